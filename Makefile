@@ -1,0 +1,64 @@
+# The two commands a newcomer needs: `make run` and `make test`. Everything installs itself
+# into .venv on first use (and again whenever a lock file changes).
+PYTHON ?= python3
+VENV   := .venv
+BIN    := $(VENV)/bin
+STAMP  := $(VENV)/.installed
+HOST   ?= 127.0.0.1
+PORT   ?= 8000
+
+.PHONY: help install run test lint typecheck pytest bench openapi lock image image-test clean
+
+help:
+	@echo "make run         start the service on $(HOST):$(PORT) (installs into .venv first)"
+	@echo "make test        ruff, mypy and the whole pytest suite"
+	@echo "make bench       benchmarks that print figures (core and service)"
+	@echo "make openapi     regenerate openapi/openapi.json from the app"
+	@echo "make image       build the container image arcspline:local (podman)"
+	@echo "make image-test  build, run and check the image and the Kubernetes Deployment"
+	@echo "make lock        re-resolve requirements/*.lock from pyproject.toml"
+
+install: $(STAMP)
+
+$(STAMP): pyproject.toml requirements/dev.lock
+	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
+	$(BIN)/python -m pip install -q --upgrade pip
+	$(BIN)/python -m pip install -q -r requirements/dev.lock
+	$(BIN)/python -m pip install -q --no-deps -e .
+	touch $@
+
+run: $(STAMP)
+	$(BIN)/python -m service --host $(HOST) --port $(PORT)
+
+lint: $(STAMP)
+	$(BIN)/ruff check service tests bench scripts
+	$(BIN)/ruff format --check service tests bench scripts
+
+typecheck: $(STAMP)
+	$(BIN)/mypy
+
+pytest: $(STAMP)
+	$(BIN)/python -m pytest -n 2 --dist loadgroup
+
+test: lint typecheck pytest
+
+bench: $(STAMP)
+	$(BIN)/python bench/core.py
+	$(BIN)/python bench/service.py
+
+openapi: $(STAMP)
+	$(BIN)/python -m service.api.export openapi/openapi.json
+
+lock: $(STAMP)
+	$(BIN)/python -m pip install -q uv
+	$(BIN)/uv pip compile pyproject.toml -q --python-version 3.11 --no-header --annotation-style line -o requirements/runtime.lock
+	$(BIN)/uv pip compile pyproject.toml --extra dev -q --python-version 3.11 --no-header --annotation-style line -o requirements/dev.lock
+
+image:
+	scripts/image.sh build
+
+image-test:
+	scripts/image.sh test
+
+clean:
+	rm -rf $(VENV) .cache .pytest_cache .mypy_cache .ruff_cache .hypothesis

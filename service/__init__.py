@@ -1,0 +1,1 @@
+"""arcspline: arc-spline approximation of cubic Bézier spirals for CNC tool paths."""

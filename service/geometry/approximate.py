@@ -1,0 +1,162 @@
+"""The core's entry points: one spiral, or many at once, under explicit limits."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Literal, get_args
+
+import numpy as np
+
+from . import canonical
+from .assemble import Frames, segment_columns, splines
+from .errors import GeometryError
+from .spiral import Spiral
+from .subdivide import subdivide
+from .types import ArcSpline
+
+Strategy = Literal["subdivide", "fewest-arcs"]
+STRATEGIES: tuple[str, ...] = get_args(Strategy)
+
+_EPS = float(np.finfo(np.float64).eps)
+
+#: World coordinates are ``B0 + a·R·p``: each output coordinate carries a rounding error of a
+#: few ulps of the largest coordinate. The core aims below the tolerance by this many ulps of
+#: the spiral's coordinate scale, so the guarantee holds for the numbers it hands out.
+ROUNDING_MARGIN_ULPS = 32.0
+
+
+@dataclass(frozen=True, slots=True)
+class Limits:
+    """Bounds that keep every request finite.
+
+    ``max_segments`` caps the segments of one arc spline. ``min_relative_tolerance`` is the
+    smallest tolerance accepted, as a fraction of the spiral's chord; below it (or below what
+    double precision can represent at the spiral's coordinates) the core refuses rather than
+    return an answer it cannot vouch for.
+    """
+
+    max_segments: int = 10_000
+    min_relative_tolerance: float = 1e-10
+
+
+DEFAULT_LIMITS = Limits()
+
+
+def _rounding_margin(spiral: Spiral) -> float:
+    return ROUNDING_MARGIN_ULPS * _EPS * (spiral.coordinate_scale + spiral.chord)
+
+
+def min_tolerance(spiral: Spiral, limits: Limits = DEFAULT_LIMITS) -> float:
+    """The smallest tolerance the core accepts for ``spiral``.
+
+    The larger of ``limits.min_relative_tolerance × chord`` and four rounding margins, so
+    that at least three quarters of the tolerance is left for the approximation itself.
+    """
+    return max(limits.min_relative_tolerance * spiral.chord, 4.0 * _rounding_margin(spiral))
+
+
+def _check_tolerance(spiral: Spiral, tolerance: float, limits: Limits) -> None:
+    if not (isinstance(tolerance, int | float) and math.isfinite(tolerance) and tolerance > 0):
+        raise GeometryError("tolerance", f"must be a finite number > 0, got {tolerance!r}")
+    floor = min_tolerance(spiral, limits)
+    if tolerance < floor:
+        raise GeometryError(
+            "tolerance",
+            f"{tolerance:.6g} is below the smallest reachable tolerance {floor:.6g} for this "
+            f"spiral (chord {spiral.chord:.6g}, coordinates up to {spiral.coordinate_scale:.6g}); "
+            "double precision cannot deliver less",
+            kind="tolerance_floor",
+            limit=floor,
+        )
+
+
+def _check_strategy(strategy: str) -> None:
+    if strategy not in STRATEGIES:
+        raise GeometryError(
+            "strategy", f"unknown strategy {strategy!r}; choose one of {', '.join(STRATEGIES)}"
+        )
+
+
+def approximate(
+    spiral: Spiral,
+    tolerance: float,
+    strategy: Strategy = "subdivide",
+    limits: Limits = DEFAULT_LIMITS,
+) -> ArcSpline:
+    """Approximate ``spiral`` by an arc spline within ``tolerance``.
+
+    Raises :class:`GeometryError` for a tolerance that is not finite and positive, below
+    :func:`min_tolerance`, an unknown strategy, or a result that would exceed
+    ``limits.max_segments``.
+    """
+    (result,) = approximate_many([spiral], [tolerance], strategy, limits)
+    if isinstance(result, GeometryError):
+        raise result
+    return result
+
+
+def approximate_many(
+    spirals: Sequence[Spiral],
+    tolerances: Sequence[float],
+    strategy: Strategy = "subdivide",
+    limits: Limits = DEFAULT_LIMITS,
+) -> list[ArcSpline | GeometryError]:
+    """Approximate many spirals at once, vectorised across spirals (same order as given).
+
+    A spiral whose tolerance or limits fail gets its :class:`GeometryError` in its place;
+    the others are unaffected.
+    """
+    if len(spirals) != len(tolerances):
+        raise ValueError("spirals and tolerances differ in length")
+    _check_strategy(strategy)
+    results: list[ArcSpline | GeometryError | None] = [None] * len(spirals)
+    valid: list[int] = []
+    for j, (spiral, tolerance) in enumerate(zip(spirals, tolerances, strict=True)):
+        try:
+            _check_tolerance(spiral, tolerance, limits)
+            valid.append(j)
+        except GeometryError as error:
+            results[j] = error
+    if valid:
+        chosen = [spirals[j] for j in valid]
+        tol = np.array([tolerances[j] for j in valid], dtype=np.float64)
+        for j, result in zip(valid, _subdivide_batch(chosen, tol, limits, strategy), strict=True):
+            results[j] = result
+    return [r for r in results if r is not None]
+
+
+def _subdivide_batch(
+    spirals: list[Spiral], tolerances: np.ndarray, limits: Limits, strategy: str
+) -> list[ArcSpline | GeometryError]:
+    theta = np.array([s.turn_angle_rad for s in spirals], dtype=np.float64)
+    scale = np.array([s.a for s in spirals], dtype=np.float64)
+    margin = np.array([_rounding_margin(s) for s in spirals], dtype=np.float64)
+    k, m = canonical.coefficients(theta)
+    outcome = subdivide(k, m, (tolerances - margin) / scale, limits.max_segments // 2)
+    frames = Frames.of(spirals)
+    columns = segment_columns(outcome.kept, k, m, frames)
+    done = splines(columns, np.repeat(outcome.kept.spiral, 2), spirals, tolerances, strategy)
+    return [
+        _failure(spirals[j], float(tolerances[j]), why, limits) if why else done[j]
+        for j, why in enumerate(outcome.failure)
+    ]
+
+
+def _failure(spiral: Spiral, tolerance: float, why: str, limits: Limits) -> GeometryError:
+    if why == "segment_limit":
+        return GeometryError(
+            "tolerance",
+            f"{tolerance:.6g} needs more than the limit of {limits.max_segments} segments for "
+            "this spiral; raise the tolerance",
+            kind="segment_limit",
+            limit=float(limits.max_segments),
+        )
+    return GeometryError(
+        "tolerance",
+        f"{tolerance:.6g} cannot be reached in double precision for this spiral "
+        f"(a piece became too short to split); raise the tolerance",
+        kind="precision",
+        limit=min_tolerance(spiral, limits),
+    )

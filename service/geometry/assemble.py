@@ -1,0 +1,243 @@
+"""From kept canonical biarcs to world-coordinate segments and statistics.
+
+A canonical point ``p`` maps to ``B0 + a·R(φ)·(p_x, σ·p_y)``, with ``φ`` the direction of the
+start tangent and ``σ = ±1`` the turning direction (the mirror for clockwise spirals);
+angles map to ``φ + σ·angle``, sweeps to ``σ·sweep``, lengths and deviations scale by ``a``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import numpy.typing as npt
+
+from . import canonical
+from .spiral import Spiral
+from .subdivide import IntArray, Kept
+from .types import ArcSpline, FloatArray, SegmentColumns, SplineStats
+
+#: Below this sweep an arc is numerically flat: its centre and radius (≈ length / sweep) carry
+#: no information and a controller may read it as a full circle. It becomes its chord; the
+#: tangent then turns by at most half of this at each end, far below anything measurable.
+FLAT_SWEEP_RAD = 1e-10
+
+
+@dataclass(frozen=True, slots=True)
+class Frames:
+    """The similarity of each spiral of a batch: origin, scale, start direction, mirror."""
+
+    origin: FloatArray
+    scale: FloatArray
+    cos_phi: FloatArray
+    sin_phi: FloatArray
+    phi_rad: FloatArray
+    mirror: FloatArray
+    end_point: FloatArray
+
+    @classmethod
+    def of(cls, spirals: list[Spiral]) -> Frames:
+        tangent = np.array([s.start_tangent for s in spirals], dtype=np.float64).reshape(-1, 2)
+        return cls(
+            origin=np.array([s.start for s in spirals], dtype=np.float64).reshape(-1, 2),
+            scale=np.array([s.a for s in spirals], dtype=np.float64),
+            cos_phi=tangent[:, 0],
+            sin_phi=tangent[:, 1],
+            phi_rad=np.arctan2(tangent[:, 1], tangent[:, 0]),
+            mirror=np.array([s.turn_direction for s in spirals], dtype=np.float64),
+            end_point=np.array([s.control_points[3] for s in spirals]).reshape(-1, 2),
+        )
+
+    def point(self, i: IntArray, x: FloatArray, y: FloatArray) -> FloatArray:
+        """World points of canonical points ``(x, y)`` of spirals ``i``."""
+        return self.origin[i] + self.vector(i, x, y)
+
+    def vector(self, i: IntArray, x: FloatArray, y: FloatArray) -> FloatArray:
+        """World vectors of canonical vectors ``(x, y)`` of spirals ``i``."""
+        s, c, sn = self.scale[i], self.cos_phi[i], self.sin_phi[i]
+        y = self.mirror[i] * y
+        return np.stack([s * (c * x - sn * y), s * (sn * x + c * y)], axis=-1)
+
+    def angle(self, i: IntArray, angle_rad: FloatArray) -> FloatArray:
+        """World polar angles of canonical angles, in ``(−π, π]``."""
+        world = self.phi_rad[i] + self.mirror[i] * angle_rad
+        return np.asarray(np.arctan2(np.sin(world), np.cos(world)))
+
+
+def segment_columns(
+    kept: Kept, k: FloatArray, m: FloatArray, frames: Frames
+) -> SegmentColumns:
+    """Two rows per kept biarc (arc 0, then arc 1), in the order of ``kept``."""
+    b, d, i = kept.biarcs, kept.deviation, kept.spiral
+    kk, mm = k[i], m[i]
+    a0 = frames.point(i, *canonical.point(kk, mm, b.u0))
+    a1 = frames.point(i, *canonical.point(kk, mm, b.u1))
+    join = a0 + frames.vector(i, b.join_dx, b.join_dy)
+    # Pin the spiral's own end points: u = 0 maps to B0 exactly, u = 1 to the stored B3.
+    at_end = b.u1 == 1.0
+    a1[at_end] = frames.end_point[i[at_end]]
+    scale = frames.scale[i]
+
+    def interleave(first: npt.NDArray[np.generic], second: npt.NDArray[np.generic]) -> FloatArray:
+        out = np.empty((2 * first.shape[0], *first.shape[1:]), dtype=np.result_type(first))
+        out[0::2], out[1::2] = first, second
+        return out
+
+    def normal(phi: FloatArray) -> tuple[FloatArray, FloatArray]:
+        return -np.sin(phi), np.cos(phi)
+
+    centre0 = a0 + frames.vector(i, *(b.radius0 * n for n in normal(b.phi0_rad)))
+    centre1 = a1 + frames.vector(i, *(b.radius1 * n for n in normal(b.phi1_rad)))
+    sweep = interleave(b.alpha_rad, b.beta_rad)
+    mirror = interleave(frames.mirror[i], frames.mirror[i])
+    radius = interleave(scale * b.radius0, scale * b.radius1)
+    start = interleave(a0, join)
+    end = interleave(join, a1)
+    is_arc = sweep > FLAT_SWEEP_RAD
+    length = np.where(is_arc, radius * sweep, np.hypot(*(end - start).T))
+    centre = np.where(is_arc[:, None], interleave(centre0, centre1), 0.5 * (start + end))
+    start_angle = interleave(
+        frames.angle(i, b.phi0_rad - 0.5 * np.pi), frames.angle(i, b.chord_rad - 0.5 * np.pi)
+    )
+    max_dev = interleave(scale * d.arc0, scale * d.arc1)
+    if not is_arc.all():
+        max_dev = np.where(is_arc, max_dev, _flat_deviation(kept, k, m, is_arc) * np.repeat(scale, 2))
+    return SegmentColumns(
+        is_arc=is_arc,
+        start=start,
+        end=end,
+        center=centre,
+        radius=np.where(is_arc, radius, np.inf),
+        start_angle_rad=np.where(is_arc, start_angle, 0.0),
+        sweep_rad=np.where(is_arc, mirror * sweep, 0.0),
+        length=length,
+        u_start=interleave(b.u0, d.split),
+        u_end=interleave(d.split, b.u1),
+        max_deviation=max_dev,
+        u_at_max_deviation=interleave(d.u_arc0, d.u_arc1),
+    )
+
+
+def _flat_deviation(
+    kept: Kept, k: FloatArray, m: FloatArray, is_arc: npt.NDArray[np.bool_]
+) -> FloatArray:
+    """Largest distance from each segment's spiral piece to its chord, canonical units.
+
+    The distance to the chord's line, ``(Q(u) − A)×ĉ``, has its one interior extremum where
+    ``Q'(u)×ĉ = 0``, i.e. ``u² = ĉ_y / (m·ĉ_x − k·ĉ_y)``.
+    """
+    b, d, i = kept.biarcs, kept.deviation, kept.spiral
+    kk, mm = np.repeat(k[i], 2), np.repeat(m[i], 2)
+    ax = np.repeat(b.u0, 2)
+    lo = np.ravel(np.column_stack([b.u0, d.split]))
+    hi = np.ravel(np.column_stack([d.split, b.u1]))
+    gx0, gy0 = canonical.offset(k[i], m[i], b.u0, b.u1)
+    cx = np.ravel(np.column_stack([b.join_dx, gx0 - b.join_dx]))
+    cy = np.ravel(np.column_stack([b.join_dy, gy0 - b.join_dy]))
+    norm = np.hypot(cx, cy)
+    cx, cy = cx / norm, cy / norm
+    with np.errstate(divide="ignore", invalid="ignore"):
+        critical = np.sqrt(cy / (mm * cx - kk * cy))
+    candidates = [lo, hi, np.where((critical > lo) & (critical < hi), critical, lo)]
+    # Measure from the segment's start: A0 for arc 0, G (= A0 + join) for arc 1.
+    sx = np.ravel(np.column_stack([np.zeros_like(b.join_dx), b.join_dx]))
+    sy = np.ravel(np.column_stack([np.zeros_like(b.join_dy), b.join_dy]))
+    worst = np.zeros_like(lo)
+    for u in candidates:
+        px, py = canonical.offset(kk, mm, ax, u)
+        worst = np.maximum(worst, np.abs((px - sx) * cy - (py - sy) * cx))
+    # The arc's own deviation covers the end point gap ‖Q(t) − G‖; the chord differs from the
+    # arc by less than its sagitta (< length·FLAT_SWEEP_RAD/8), so this is exact to that level.
+    arc_deviation = np.ravel(np.column_stack([d.arc0, d.arc1]))
+    return np.where(is_arc, 0.0, np.maximum(worst, arc_deviation))
+
+
+def splines(
+    columns: SegmentColumns,
+    spiral_of_row: IntArray,
+    spirals: list[Spiral],
+    tolerances: FloatArray,
+    strategy: str,
+) -> list[ArcSpline]:
+    """Cut batch columns into one :class:`ArcSpline` per spiral (row views, no copies)."""
+    n = len(spirals)
+    counts = np.bincount(spiral_of_row, minlength=n)
+    bounds = np.concatenate([[0], np.cumsum(counts)])
+    stats = _stats(columns, counts, bounds, spirals, tolerances)
+    return [
+        ArcSpline(
+            columns=columns.rows(int(bounds[j]), int(bounds[j + 1])),
+            stats=stats[j],
+            tolerance=float(tolerances[j]),
+            strategy=strategy,
+        )
+        for j in range(n)
+    ]
+
+
+def _stats(
+    columns: SegmentColumns,
+    counts: IntArray,
+    bounds: IntArray,
+    spirals: list[Spiral],
+    tolerances: FloatArray,
+) -> list[SplineStats]:
+    starts = bounds[:-1]
+    nonempty = counts > 0
+    at = np.where(nonempty, starts, 0)
+
+    def reduce(ufunc: np.ufunc, values: FloatArray, empty: float) -> FloatArray:
+        if values.size == 0:
+            return np.full(counts.shape, empty)
+        return np.where(nonempty, ufunc.reduceat(values, at), empty)
+
+    arcs = reduce(np.add, columns.is_arc.astype(np.float64), 0.0)
+    dev = columns.max_deviation
+    max_dev = reduce(np.maximum, dev, 0.0)
+    mean_dev = reduce(np.add, dev, 0.0) / np.maximum(counts, 1)
+    total = reduce(np.add, columns.length, 0.0)
+    arc_r = np.where(columns.is_arc, columns.radius, np.nan)
+    min_r = reduce(np.fmin, arc_r, np.nan)
+    max_r = reduce(np.fmax, arc_r, np.nan)
+    # The first row reaching the spline's maximum names where it occurs.
+    is_max = dev == np.repeat(max_dev, counts)
+    first_max = np.full(counts.shape, -1)
+    rows = np.flatnonzero(is_max)
+    owner = np.repeat(np.arange(counts.size), counts)[rows]
+    first_max[owner[::-1]] = rows[::-1]
+    u_max = columns.u_at_max_deviation
+    lengths = spiral_lengths(spirals)
+    result = []
+    for j in range(counts.size):
+        arc_count = int(arcs[j])
+        result.append(
+            SplineStats(
+                arc_count=arc_count,
+                line_count=int(counts[j]) - arc_count,
+                max_deviation=float(max_dev[j]),
+                u_at_max_deviation=float(u_max[first_max[j]]) if first_max[j] >= 0 else 0.0,
+                deviation_ratio=float(max_dev[j] / tolerances[j]),
+                mean_segment_deviation=float(mean_dev[j]),
+                spiral_length=float(lengths[j]),
+                spline_length=float(total[j]),
+                min_radius=None if arc_count == 0 else float(min_r[j]),
+                max_radius=None if arc_count == 0 else float(max_r[j]),
+            )
+        )
+    return result
+
+
+_NODES, _WEIGHTS = np.polynomial.legendre.leggauss(24)
+
+
+def spiral_lengths(spirals: list[Spiral]) -> FloatArray:
+    """Arc lengths of many spirals at once: canonical speed ``3·‖(1 + k·u², m·u²)‖`` by
+    24-point Gauss–Legendre on four sub-intervals (as :meth:`Spiral.arclen`), times ``a``."""
+    theta = np.array([s.turn_angle_rad for s in spirals], dtype=np.float64)
+    scale = np.array([s.a for s in spirals], dtype=np.float64)
+    k, m = canonical.coefficients(theta)
+    u = (np.arange(4)[:, None] + 0.5 + 0.5 * _NODES[None, :]).ravel() / 4.0
+    w2 = (u * u)[None, :]
+    speed = 3.0 * np.hypot(1.0 + k[:, None] * w2, m[:, None] * w2)
+    weights = np.tile(_WEIGHTS, 4) / 8.0
+    return np.asarray(scale * (speed @ weights))

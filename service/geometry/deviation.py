@@ -1,0 +1,135 @@
+"""Where the spiral passes between a biarc's arcs (Theorem 1) and its largest deviation
+from them (Theorem 2), paper §3–§4, in the canonical frame of ``service.geometry.canonical``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import canonical
+from .biarc import Biarcs
+from .roots import bracketed_newton
+from .types import FloatArray
+
+
+@dataclass(frozen=True, slots=True)
+class Deviation:
+    """The largest radial deviation of each spiral piece from its biarc.
+
+    ``split`` is Theorem 1's ``t``; ``arc0``/``arc1`` are the maxima over ``[u0, t]`` and
+    ``[t, u1]`` (reached at ``u_arc0``/``u_arc1``); ``value`` and ``u`` are the overall
+    maximum δ and where it occurs, ``u_d`` of §4.
+    """
+
+    split: FloatArray
+    arc0: FloatArray
+    u_arc0: FloatArray
+    arc1: FloatArray
+    u_arc1: FloatArray
+    value: FloatArray
+    u: FloatArray
+
+
+def split_parameter(k: FloatArray, m: FloatArray, b: Biarcs) -> FloatArray:
+    """Theorem 1: the unique ``t ∈ (u0, u1)`` with ``(Q(t) − G)·H = 0``.
+
+    ``H`` is the chord direction. With ``v = t − u0`` and ``K = (k, m)·H`` the condition is the
+    cubic ``K·v³ + 3u0·K·v² + (3H_x + 3u0²·K)·v − (G − A0)·H = 0``, increasing on ``(0, u1 − u0)``
+    (the theorem's ``f' > 0``). ``(G − A0)·H = |G − A0|·cos(α/2)``.
+    """
+    hx, hy = np.cos(b.chord_rad), np.sin(b.chord_rad)
+    big_k = k * hx + m * hy
+    c2 = 3.0 * b.u0 * big_k
+    c1 = 3.0 * hx + 3.0 * b.u0 * b.u0 * big_k
+    c0 = -b.join_distance * np.cos(0.5 * b.alpha_rad)
+
+    def cubic(v: FloatArray) -> tuple[FloatArray, FloatArray]:
+        return ((big_k * v + c2) * v + c1) * v + c0, (3.0 * big_k * v + 2.0 * c2) * v + c1
+
+    h = b.u1 - b.u0
+    start = h * (-c0 / b.chord_length)  # where G projects on the chord, as a parameter guess
+    v = bracketed_newton(cubic, np.zeros_like(h), h, start)
+    return b.u0 + v
+
+
+def max_deviation(k: FloatArray, m: FloatArray, b: Biarcs, t: FloatArray) -> Deviation:
+    """Theorem 2: the exact largest radial deviation of each piece from its biarc.
+
+    On side ``i`` the deviation's only interior maximum is at the root of the quartic
+    ``q_i(u) = α1 + α2(u + u_i) + α3(u² + u·u_i + u_i²) + α4(u⁴ + u³u_i + u²u_i² + u·u_i³ + u_i⁴)``
+    where ``u_i`` is the arc's tangent point; canonically ``α1 = 3``, ``α2 = −(k, m)·C_i``,
+    ``α3 = 4k``, ``α4 = k² + m²``. A sign change of ``q_i`` over the side brackets it; the
+    deviation at ``t`` is ``‖Q(t) − G‖``. Both sides are solved in one stacked array.
+    """
+    n = t.shape[0]
+    ui = np.concatenate([b.u0, b.u1])
+    lo = np.concatenate([b.u0, t])
+    hi = np.concatenate([t, b.u1])
+    kk, mm = np.concatenate([k, k]), np.concatenate([m, m])
+    phi = np.concatenate([b.phi0_rad, b.phi1_rad])
+    r = np.concatenate([b.radius0, b.radius1])
+    nx, ny = -np.sin(phi), np.cos(phi)
+    ax, ay = canonical.point(kk, mm, ui)
+    alpha2 = -(kk * (ax + r * nx) + mm * (ay + r * ny))
+    alpha3 = 4.0 * kk
+    alpha4 = kk * kk + mm * mm
+    ui2 = ui * ui
+    # q(u) = c0 + c1·u + c2·u² + c3·u³ + α4·u⁴ after expanding the symmetric sums in u_i.
+    c0 = 3.0 + alpha2 * ui + ui2 * (alpha3 + alpha4 * ui2)
+    c1 = alpha2 + ui * (alpha3 + alpha4 * ui2)
+    c2 = alpha3 + alpha4 * ui2
+    c3 = alpha4 * ui
+
+    def quartic(u: FloatArray) -> tuple[FloatArray, FloatArray]:
+        value = (((alpha4 * u + c3) * u + c2) * u + c1) * u + c0
+        slope = ((4.0 * alpha4 * u + 3.0 * c3) * u + 2.0 * c2) * u + c1
+        return value, slope
+
+    q_lo, _ = quartic(lo)
+    q_hi, _ = quartic(hi)
+    bracketed = q_lo * q_hi < 0.0
+    # Orient every bracket so the function rises through its root.
+    sign = np.where(q_lo < 0.0, 1.0, -1.0)
+
+    def oriented(u: FloatArray) -> tuple[FloatArray, FloatArray]:
+        value, slope = quartic(u)
+        return sign * value, sign * slope
+
+    secant = lo + (hi - lo) * q_lo / (q_lo - q_hi)
+    root = bracketed_newton(oriented, lo, hi, np.where(bracketed, secant, lo))
+    side = np.where(bracketed, _radial_deviation(kk, mm, ui, phi, r, root), 0.0)
+
+    tx, ty = canonical.offset(k, m, b.u0, t)
+    at_t = np.hypot(tx - b.join_dx, ty - b.join_dy)
+    arc0, arc1 = side[:n], side[n:]
+    u_arc0 = np.where(arc0 > at_t, root[:n], t)
+    u_arc1 = np.where(arc1 > at_t, root[n:], t)
+    arc0, arc1 = np.maximum(arc0, at_t), np.maximum(arc1, at_t)
+    first = arc0 >= arc1
+    return Deviation(
+        split=t,
+        arc0=arc0,
+        u_arc0=u_arc0,
+        arc1=arc1,
+        u_arc1=u_arc1,
+        value=np.where(first, arc0, arc1),
+        u=np.where(first, u_arc0, u_arc1),
+    )
+
+
+def _radial_deviation(
+    k: FloatArray, m: FloatArray, ui: FloatArray, phi: FloatArray, r: FloatArray, u: FloatArray
+) -> FloatArray:
+    """``|‖Q(u) − C‖ − r|`` for the circle tangent at ``Q(ui)`` with direction ``phi``.
+
+    With ``P = Q(u) − Q(ui)`` and ``C = Q(ui) + r·N``:
+    ``‖Q − C‖ − r = (‖P‖² − 2r·P·N) / (‖P − r·N‖ + r)``, free of the cancellation between
+    two nearly equal large numbers that the direct form suffers for large radii.
+    """
+    px, py = canonical.offset(k, m, ui, u)
+    nx, ny = -np.sin(phi), np.cos(phi)
+    numerator = px * px + py * py - 2.0 * r * (px * nx + py * ny)
+    result: FloatArray = np.abs(numerator) / (np.hypot(px - r * nx, py - r * ny) + r)
+    return result

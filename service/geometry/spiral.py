@@ -1,0 +1,241 @@
+"""The cubic Bézier spiral of Walton & Meek (1996), §1 of ``shared/spec/walton-meek-1996.md``.
+
+Five parameters define it: start point ``B0``, unit start tangent ``T0``, turn angle
+``0 < θ < 90°`` and end curvature ``c ≠ 0`` (``c < 0`` turns clockwise: the mirror image)::
+
+    a = 25·tan θ / (54·|c|·cos θ)        b = 5·tan θ / (9·|c|)
+    B1 = B0 + a·T0,   B2 = B1 + a·T0,   B3 = B2 + b·T1
+
+Up to a similarity (translate ``B0`` to the origin, rotate ``T0`` onto +x, mirror if
+``c < 0``, divide by ``a``) every such spiral is the *canonical* spiral of its turn angle::
+
+    Q(u) = (3u + k·u³, m·u³),   k = 1.2·cos²θ − 1,   m = 1.2·cos θ·sin θ
+
+which is where the core does its arithmetic (``service.geometry.canonical``); this module
+holds the spiral as the user gave it, evaluates it in world coordinates and maps canonical
+results back.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+
+from .errors import GeometryError
+from .types import FloatArray, Point
+
+#: Control points are accepted as "of the paper's form" when each condition holds to this
+#: relative accuracy: enough for coordinates printed with ~7 significant digits.
+FORM_RTOL = 1e-6
+
+_GAUSS_NODES, _GAUSS_WEIGHTS = np.polynomial.legendre.leggauss(24)
+
+
+def _finite(field: str, *values: float) -> None:
+    if not all(math.isfinite(v) for v in values):
+        raise GeometryError(field, "must be finite numbers (no NaN or Infinity)")
+
+
+def _pair(field: str, value: Sequence[float]) -> tuple[float, float]:
+    if len(value) != 2:
+        raise GeometryError(field, f"must have 2 coordinates, got {len(value)}")
+    x, y = float(value[0]), float(value[1])
+    _finite(field, x, y)
+    return x, y
+
+
+@dataclass(frozen=True)
+class Spiral:
+    """A cubic Bézier spiral in world coordinates (paper §1).
+
+    Build it with :meth:`from_parameters` or :meth:`from_control_points`, which validate.
+    ``turn_angle_rad`` is positive; the sign of ``end_curvature`` is the turning direction.
+    """
+
+    start: Point
+    start_tangent: Point
+    turn_angle_rad: float
+    end_curvature: float
+
+    @classmethod
+    def from_parameters(
+        cls,
+        start: Sequence[float],
+        start_tangent: Sequence[float],
+        turn_angle_deg: float,
+        end_curvature: float,
+    ) -> Spiral:
+        """The paper's five parameters; ``start_tangent`` is any non-zero vector."""
+        sx, sy = _pair("start", start)
+        tx, ty = _pair("start_tangent", start_tangent)
+        norm = math.hypot(tx, ty)
+        if not norm > 0.0:
+            raise GeometryError("start_tangent", "must be a non-zero vector")
+        _finite("turn_angle_deg", turn_angle_deg)
+        if not 0.0 < turn_angle_deg < 90.0:
+            raise GeometryError(
+                "turn_angle_deg", f"must lie strictly between 0 and 90 degrees, got {turn_angle_deg}"
+            )
+        _finite("end_curvature", end_curvature)
+        if end_curvature == 0.0:
+            raise GeometryError(
+                "end_curvature", "must be non-zero (its sign is the turning direction)"
+            )
+        spiral = cls(
+            start=Point(sx, sy),
+            start_tangent=Point(tx / norm, ty / norm),
+            turn_angle_rad=math.radians(turn_angle_deg),
+            end_curvature=float(end_curvature),
+        )
+        _finite("end_curvature", spiral.a, spiral.b)
+        if not spiral.a > 0.0:
+            raise GeometryError("end_curvature", "is so large that the spiral has no extent")
+        return spiral
+
+    @classmethod
+    def from_control_points(cls, points: Sequence[Sequence[float]]) -> Spiral:
+        """Four control points of the paper's form; θ and c are recovered from them.
+
+        The form is ``B1 − B0 = B2 − B1 = a·T0`` and ``B3 − B2 = b·T1`` with
+        ``b / a = 1.2·cos θ``, θ the angle from ``T0`` to ``T1`` (``0 < |θ| < 90°``).
+        """
+        field = "control_points"
+        if len(points) != 4:
+            raise GeometryError(field, f"must be 4 points, got {len(points)}")
+        b = np.array([_pair(f"{field}[{i}]", p) for i, p in enumerate(points)], dtype=np.float64)
+        d0, d1, d2 = b[1] - b[0], b[2] - b[1], b[3] - b[2]
+        a_len = float(np.hypot(*d0))
+        b_len = float(np.hypot(*d2))
+        if not (a_len > 0.0 and b_len > 0.0):
+            raise GeometryError(field, "consecutive points must be distinct (B0≠B1, B2≠B3)")
+        mismatch = float(np.hypot(*(d1 - d0))) / a_len
+        if mismatch > FORM_RTOL:
+            raise GeometryError(
+                field,
+                "B2 − B1 must equal B1 − B0 (the paper's form); they differ by "
+                f"{mismatch:.3g} of |B1 − B0| (allowed {FORM_RTOL:g})",
+            )
+        t0 = (d0 + d1) / (2.0 * a_len)
+        t0 /= np.hypot(*t0)
+        t1 = d2 / b_len
+        theta = math.atan2(float(t0[0] * t1[1] - t0[1] * t1[0]), float(t0 @ t1))
+        theta_deg = math.degrees(abs(theta))
+        if not 0.0 < theta_deg < 90.0:
+            raise GeometryError(
+                field,
+                "the angle from B1 − B0 to B3 − B2 must lie strictly between 0 and 90 degrees "
+                f"in size, got {theta_deg:.6g}",
+            )
+        ratio = b_len / a_len
+        expected = 1.2 * math.cos(abs(theta))
+        if abs(ratio - expected) > FORM_RTOL * expected:
+            raise GeometryError(
+                field,
+                f"|B3 − B2| / |B1 − B0| must equal 1.2·cos θ = {expected:.9g}, got {ratio:.9g} "
+                f"(off by {abs(ratio - expected) / expected:.3g} relative, allowed {FORM_RTOL:g})",
+            )
+        curvature = 5.0 * math.tan(abs(theta)) / (9.0 * b_len)
+        return cls.from_parameters(
+            start=b[0].tolist(),
+            start_tangent=t0.tolist(),
+            turn_angle_deg=theta_deg,
+            end_curvature=math.copysign(curvature, theta),
+        )
+
+    # -- derived quantities ------------------------------------------------------------
+
+    @property
+    def turn_direction(self) -> int:
+        """+1 for a left (anticlockwise) turn, −1 for the mirror image."""
+        return 1 if self.end_curvature > 0.0 else -1
+
+    @property
+    def turn_angle_deg(self) -> float:
+        return math.degrees(self.turn_angle_rad)
+
+    @cached_property
+    def a(self) -> float:
+        """``|B1 − B0|``: also the scale of the canonical frame."""
+        th = self.turn_angle_rad
+        return 25.0 * math.tan(th) / (54.0 * abs(self.end_curvature) * math.cos(th))
+
+    @cached_property
+    def b(self) -> float:
+        """``|B3 − B2|``."""
+        return 5.0 * math.tan(self.turn_angle_rad) / (9.0 * abs(self.end_curvature))
+
+    @cached_property
+    def end_tangent(self) -> Point:
+        phi = self.turn_direction * self.turn_angle_rad
+        c, s = math.cos(phi), math.sin(phi)
+        tx, ty = self.start_tangent
+        return Point(c * tx - s * ty, s * tx + c * ty)
+
+    @cached_property
+    def control_points(self) -> FloatArray:
+        """``B0..B3`` as a ``(4, 2)`` array."""
+        b0 = np.array(self.start)
+        t0 = np.array(self.start_tangent)
+        b1 = b0 + self.a * t0
+        b2 = b1 + self.a * t0
+        b3 = b2 + self.b * np.array(self.end_tangent)
+        return np.array([b0, b1, b2, b3])
+
+    @cached_property
+    def chord(self) -> float:
+        """``|B3 − B0|``: the spiral's size, the reference for relative tolerances."""
+        p = self.control_points
+        return float(np.hypot(*(p[3] - p[0])))
+
+    @cached_property
+    def coordinate_scale(self) -> float:
+        """The largest coordinate magnitude of the control points (for rounding margins)."""
+        return float(np.max(np.abs(self.control_points)))
+
+    # -- evaluation (Bernstein form) ---------------------------------------------------
+
+    def eval(self, u: float | FloatArray) -> FloatArray:
+        """``Q(u)`` by de Casteljau; shape ``(..., 2)`` for ``u`` of shape ``(...)``."""
+        return _bernstein(self.control_points, np.asarray(u, dtype=np.float64))
+
+    def deriv(self, u: float | FloatArray) -> FloatArray:
+        """``Q'(u)``."""
+        return _bernstein(3.0 * np.diff(self.control_points, axis=0), np.asarray(u, np.float64))
+
+    def deriv2(self, u: float | FloatArray) -> FloatArray:
+        """``Q''(u)``."""
+        second = 6.0 * np.diff(self.control_points, n=2, axis=0)
+        return _bernstein(second, np.asarray(u, dtype=np.float64))
+
+    def curvature(self, u: float | FloatArray) -> FloatArray:
+        """Signed curvature ``κ = Q'×Q'' / ‖Q'‖³`` (positive turning left)."""
+        d1, d2 = self.deriv(u), self.deriv2(u)
+        cross = d1[..., 0] * d2[..., 1] - d1[..., 1] * d2[..., 0]
+        result: FloatArray = cross / np.hypot(d1[..., 0], d1[..., 1]) ** 3
+        return result
+
+    def arclen(self, u0: float = 0.0, u1: float = 1.0) -> float:
+        """Arc length over ``[u0, u1]`` by 24-point Gauss–Legendre on four sub-intervals.
+
+        The speed ``‖Q'‖`` is the square root of a quartic with no zero on ``[0, 1]`` (the
+        spiral has no cusp), so this is accurate to rounding.
+        """
+        edges = np.linspace(u0, u1, 5)
+        half = 0.5 * np.diff(edges)[:, None]
+        mid = 0.5 * (edges[:-1] + edges[1:])[:, None]
+        u = mid + half * _GAUSS_NODES[None, :]
+        d = self.deriv(u)
+        return float(np.sum(half * _GAUSS_WEIGHTS[None, :] * np.hypot(d[..., 0], d[..., 1])))
+
+
+def _bernstein(points: FloatArray, u: FloatArray) -> FloatArray:
+    """de Casteljau's algorithm on ``points`` (``(n+1, 2)``) at every ``u``."""
+    w = u[..., None]
+    layer = [np.broadcast_to(p, (*u.shape, 2)) for p in points]
+    while len(layer) > 1:
+        layer = [(1.0 - w) * p + w * q for p, q in zip(layer[:-1], layer[1:], strict=True)]
+    return np.array(layer[0], dtype=np.float64)
