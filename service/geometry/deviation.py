@@ -82,23 +82,29 @@ def max_deviation(k: FloatArray, m: FloatArray, b: Biarcs, t: FloatArray) -> Dev
     c2 = alpha3 + alpha4 * ui2
     c3 = alpha4 * ui
 
-    def quartic(u: FloatArray) -> tuple[FloatArray, FloatArray]:
-        value = (((alpha4 * u + c3) * u + c2) * u + c1) * u + c0
-        slope = ((4.0 * alpha4 * u + 3.0 * c3) * u + 2.0 * c2) * u + c1
-        return value, slope
+    def quartic(u: FloatArray) -> FloatArray:
+        result: FloatArray = (((alpha4 * u + c3) * u + c2) * u + c1) * u + c0
+        return result
 
-    q_lo, _ = quartic(lo)
-    q_hi, _ = quartic(hi)
+    q_lo, q_hi = quartic(lo), quartic(hi)
     bracketed = q_lo * q_hi < 0.0
-    # Orient every bracket so the function rises through its root.
-    sign = np.where(q_lo < 0.0, 1.0, -1.0)
+    # Only bracketed sides have an interior maximum; solve for those alone.
+    which = np.flatnonzero(bracketed)
+    root = lo.copy()
+    if which.size:
+        sign = np.where(q_lo[which] < 0.0, 1.0, -1.0)  # orient so the function rises
+        w_alpha4, w_c3, w_c2, w_c1, w_c0 = (
+            alpha4[which], c3[which], c2[which], c1[which], c0[which]
+        )
 
-    def oriented(u: FloatArray) -> tuple[FloatArray, FloatArray]:
-        value, slope = quartic(u)
-        return sign * value, sign * slope
+        def oriented(u: FloatArray) -> tuple[FloatArray, FloatArray]:
+            value = (((w_alpha4 * u + w_c3) * u + w_c2) * u + w_c1) * u + w_c0
+            slope = ((4.0 * w_alpha4 * u + 3.0 * w_c3) * u + 2.0 * w_c2) * u + w_c1
+            return sign * value, sign * slope
 
-    secant = lo + (hi - lo) * q_lo / (q_lo - q_hi)
-    root = bracketed_newton(oriented, lo, hi, np.where(bracketed, secant, lo))
+        lo_w, hi_w, q_lo_w = lo[which], hi[which], q_lo[which]
+        secant = lo_w + (hi_w - lo_w) * q_lo_w / (q_lo_w - q_hi[which])
+        root[which] = bracketed_newton(oriented, lo_w, hi_w, secant)
     side = np.where(bracketed, _radial_deviation(kk, mm, ui, phi, r, root), 0.0)
 
     tx, ty = canonical.offset(k, m, b.u0, t)

@@ -12,6 +12,12 @@ from .types import FloatArray
 #: pathological input, where the bisection fallback still halves the bracket every step.
 MAX_ITERATIONS = 100
 
+#: Near a root the polynomials here evaluate to rounding noise (a few ulps of their O(1)
+#: terms) over slopes that can be small, so Newton steps stall at tens of ulps, not one.
+#: The roots are used where an error of this size is immaterial: at a maximum of the
+#: deviation (which is flat there) and as split points.
+RESOLUTION_ULPS = 256.0
+
 _EPS = float(np.finfo(np.float64).eps)
 
 ValueAndSlope = Callable[[FloatArray], tuple[FloatArray, FloatArray]]
@@ -22,25 +28,25 @@ def bracketed_newton(
 ) -> FloatArray:
     """The root of ``fn`` in each ``[lo, hi]``, where ``fn(lo) ≤ 0 ≤ fn(hi)``.
 
-    Newton steps that leave the (shrinking) bracket are replaced by bisection, so every
-    element converges; iteration stops when all steps are below a few ulps of the bracket.
-    ``fn`` returns value and slope for an array of abscissae.
+    Newton steps that would leave the (shrinking) bracket are replaced by bisection, so every
+    element converges; an element is done once its Newton step is below ``RESOLUTION_ULPS``
+    ulps of the bracket's magnitude, and the iteration ends when all are. ``fn`` returns value
+    and slope.
     """
     x = np.clip(start, lo, hi)
     lo, hi = lo.copy(), hi.copy()
-    scale = np.maximum(np.abs(lo), np.abs(hi))
+    resolution = RESOLUTION_ULPS * _EPS * np.maximum(np.abs(lo), np.abs(hi))
     for _ in range(MAX_ITERATIONS):
         f, df = fn(x)
         below = f < 0.0
         lo = np.where(below, x, lo)
         hi = np.where(below, hi, x)
         with np.errstate(divide="ignore", invalid="ignore"):
-            newton = x - f / df
+            step = f / df
+        converged = np.abs(step) <= resolution
+        newton = x - step
         inside = (newton > lo) & (newton < hi)
-        nxt = np.where(inside, newton, 0.5 * (lo + hi))
-        nxt = np.where(f == 0.0, x, nxt)
-        done = np.abs(nxt - x) <= 4.0 * _EPS * scale
-        x = nxt
-        if done.all():
+        x = np.where(converged, newton, np.where(inside, newton, 0.5 * (lo + hi)))
+        if converged.all():
             break
     return x

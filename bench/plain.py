@@ -1,0 +1,171 @@
+"""The baseline: Walton & Meek's method written plainly, one spiral at a time.
+
+This is what a careful reader of ``shared/spec/walton-meek-1996.md`` writes first: pure
+Python floats, the formulas in the order the spec gives them (tangent intersection ``V``,
+incentre, ``r = ‖P − A‖² / (2·(P − A)·N)``), bisection then Newton for Theorem 1's ``t`` and
+Theorem 2's quartic roots, and the recursion of §5. It exists so that benchmarks measure the
+core against the same algorithm in the same run; the tests do not use it.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+Vec = tuple[float, float]
+
+
+def _add(p: Vec, q: Vec) -> Vec:
+    return (p[0] + q[0], p[1] + q[1])
+
+
+def _sub(p: Vec, q: Vec) -> Vec:
+    return (p[0] - q[0], p[1] - q[1])
+
+
+def _mul(s: float, p: Vec) -> Vec:
+    return (s * p[0], s * p[1])
+
+
+def _dot(p: Vec, q: Vec) -> float:
+    return p[0] * q[0] + p[1] * q[1]
+
+
+def _cross(p: Vec, q: Vec) -> float:
+    return p[0] * q[1] - p[1] * q[0]
+
+
+def _norm(p: Vec) -> float:
+    return math.hypot(p[0], p[1])
+
+
+def _unit(p: Vec) -> Vec:
+    return _mul(1.0 / _norm(p), p)
+
+
+def _normal(t: Vec) -> Vec:
+    return (-t[1], t[0])
+
+
+@dataclass(frozen=True)
+class PlainArc:
+    start: Vec
+    end: Vec
+    center: Vec
+    radius: float
+
+
+@dataclass(frozen=True)
+class PlainSpiral:
+    b: tuple[Vec, Vec, Vec, Vec]
+    a: float
+    bb: float
+    t0: Vec
+    t1: Vec
+
+    def eval(self, u: float) -> Vec:
+        s = 1.0 - u
+        w = (s * s * s, 3.0 * s * s * u, 3.0 * s * u * u, u * u * u)
+        return (sum(wi * p[0] for wi, p in zip(w, self.b)), sum(wi * p[1] for wi, p in zip(w, self.b)))
+
+    def deriv(self, u: float) -> Vec:
+        k = _sub(_mul(self.bb, self.t1), _mul(self.a, self.t0))
+        return _add(_mul(3.0 * self.a, self.t0), _mul(3.0 * u * u, k))
+
+
+def make_spiral(start: Vec, tangent: Vec, turn_angle_deg: float, curvature: float) -> PlainSpiral:
+    th = math.radians(turn_angle_deg)
+    c = abs(curvature)
+    a = 25.0 * math.tan(th) / (54.0 * c * math.cos(th))
+    bb = 5.0 * math.tan(th) / (9.0 * c)
+    t0 = _unit(tangent)
+    phi = th if curvature > 0 else -th
+    t1 = (t0[0] * math.cos(phi) - t0[1] * math.sin(phi), t0[0] * math.sin(phi) + t0[1] * math.cos(phi))
+    b1 = _add(start, _mul(a, t0))
+    b2 = _add(b1, _mul(a, t0))
+    b3 = _add(b2, _mul(bb, t1))
+    return PlainSpiral((start, b1, b2, b3), a, bb, t0, t1)
+
+
+def _root(f, df, lo: float, hi: float) -> float:
+    """Bisection to a narrow bracket, then Newton (the spec's §3–§4 recipe)."""
+    flo = f(lo)
+    for _ in range(20):
+        mid = 0.5 * (lo + hi)
+        fm = f(mid)
+        if (fm < 0) == (flo < 0):
+            lo, flo = mid, fm
+        else:
+            hi = mid
+    x = 0.5 * (lo + hi)
+    for _ in range(50):
+        step = f(x) / df(x)
+        x -= step
+        if abs(step) <= 1e-15 * max(1.0, abs(x)):
+            break
+    return x
+
+
+def _circle(a: Vec, t: Vec, p: Vec) -> tuple[Vec, float]:
+    n = _normal(t)
+    d = _sub(p, a)
+    r = _dot(d, d) / (2.0 * _dot(d, n))
+    return _add(a, _mul(r, n)), r
+
+
+def _biarc(sp: PlainSpiral, u0: float, u1: float) -> tuple[list[PlainArc], float, float]:
+    a0, a1 = sp.eval(u0), sp.eval(u1)
+    ta0, ta1 = _unit(sp.deriv(u0)), _unit(sp.deriv(u1))
+    lam = _cross(_sub(a1, a0), ta1) / _cross(ta0, ta1)
+    v = _add(a0, _mul(lam, ta0))
+    la, lb, lc = _norm(_sub(v, a1)), _norm(_sub(a1, a0)), _norm(_sub(a0, v))
+    per = la + lb + lc
+    g = _mul(1.0 / per, _add(_add(_mul(la, a0), _mul(lb, v)), _mul(lc, a1)))
+    c0, r0 = _circle(a0, ta0, g)
+    c1, r1 = _circle(a1, ta1, g)
+    h = _unit(_sub(a1, a0))
+    t = _root(
+        lambda u: _dot(_sub(sp.eval(u), g), h), lambda u: _dot(sp.deriv(u), h), u0, u1
+    )
+    k = _sub(_mul(sp.bb, sp.t1), _mul(sp.a, sp.t0))
+    best, u_best = _norm(_sub(sp.eval(t), g)), t
+    for c, r, ui, lo, hi in ((c0, r0, u0, u0, t), (c1, r1, u1, t, u1)):
+        al1 = 3.0 * sp.a * sp.a
+        al2 = _dot(k, _sub(sp.b[0], c))
+        al3 = 4.0 * sp.a * (sp.bb * _dot(sp.t0, sp.t1) - sp.a)
+        al4 = sp.a * sp.a - 2.0 * sp.a * sp.bb * _dot(sp.t0, sp.t1) + sp.bb * sp.bb
+
+        def q(u: float, ui: float = ui, al2: float = al2, al3: float = al3, al4: float = al4) -> float:
+            return al1 + al2 * (u + ui) + al3 * (u * u + u * ui + ui * ui) + al4 * (
+                u**4 + u**3 * ui + u * u * ui * ui + u * ui**3 + ui**4
+            )
+
+        def dq(u: float, ui: float = ui, al2: float = al2, al3: float = al3, al4: float = al4) -> float:
+            return al2 + al3 * (2 * u + ui) + al4 * (4 * u**3 + 3 * u * u * ui + 2 * u * ui * ui + ui**3)
+
+        if q(lo) * q(hi) < 0:
+            root = _root(q, dq, lo, hi)
+            e = abs(_norm(_sub(sp.eval(root), c)) - abs(r))
+            if e > best:
+                best, u_best = e, root
+    arcs = [PlainArc(a0, g, c0, abs(r0)), PlainArc(g, a1, c1, abs(r1))]
+    return arcs, best, u_best
+
+
+def plain_approximate(
+    start: Vec, start_tangent: Vec, turn_angle_deg: float, end_curvature: float, tolerance: float
+) -> list[PlainArc]:
+    """The arcs of Walton & Meek's subdivision (§5), recursively, for one spiral."""
+    sp = make_spiral(start, start_tangent, turn_angle_deg, end_curvature)
+    out: list[PlainArc] = []
+
+    def recurse(u0: float, u1: float) -> None:
+        arcs, delta, u_d = _biarc(sp, u0, u1)
+        if delta <= tolerance:
+            out.extend(arcs)
+        else:
+            recurse(u0, u_d)
+            recurse(u_d, u1)
+
+    recurse(0.0, 1.0)
+    return out
