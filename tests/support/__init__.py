@@ -1,0 +1,1 @@
+"""Test support: an independent oracle for the geometry core's guarantees."""
