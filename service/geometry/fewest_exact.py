@@ -1,0 +1,249 @@
+"""The exact two-sided deviation of a G1 chain of arcs from the canonical spiral.
+
+Used by the ``fewest-arcs`` strategy (:mod:`service.geometry.fewest`), whose arcs need not
+touch the spiral: a chain's joints ``J_i`` (with unit tangents ``T_i``) may lie off the curve.
+Everything is in the canonical frame of :mod:`service.geometry.canonical`,
+``Q(u) = (3u + k·u³, m·u³)``.
+
+**Which spiral points an arc answers for.** Arc ``i`` runs from ``J_i`` (direction ``φ_i``,
+signed curvature ``κ_i``, centre ``C_i = J_i + N_i/κ_i``, ``N`` the left normal) to
+``J_{i+1}``. Its end rays ``C_i→J_i`` and ``C_i→J_{i+1}`` are the normal lines of the chain at
+its joints — G1 puts both neighbouring centres on the normal line at a joint — so a single
+parameter ``s_i`` per joint, the root of ``(Q(s) − J_i)·T_i = 0`` (a cubic increasing in ``s``
+because every spiral tangent is within 90° of ``T_i``), splits the spiral between the arcs
+before and after ``J_i``: arc ``i`` answers for ``u ∈ [s_i, s_{i+1}]``, and the pieces tile
+``[0, 1]`` in order (``s_0 = 0`` and ``s_n = 1`` because the chain starts and ends on the
+spiral with its tangents).
+
+**Why the radial deviation is the two-sided distance.** If the polar angle of ``Q(u)`` about
+``C_i`` is strictly monotone on ``[s_i, s_{i+1}]`` and ``Q(s_i)``, ``Q(s_{i+1})`` lie on the rays
+through ``J_i``, ``J_{i+1}`` (not on the opposite side of ``C_i``), then the spiral piece and the
+arc are both polar graphs ``ρ(ψ)`` over the *same* angular interval; each point of one is then
+within ``|ρ_spiral(ψ) − r|`` of the point of the other at the same angle ``ψ``, so the Hausdorff
+distance between the piece and the arc is at most ``max_u |‖Q(u) − C_i‖ − r_i|`` — and at least
+it, since that is attained. Both conditions are checked exactly:
+
+* monotone angle ⇔ ``w(u) = κ·(Q − J)×Q' + T·Q' > 0``, and ``w/3 = κ·j_y + T_x +
+  (κ(k·j_y − m·j_x) + k·T_x + m·T_y)·u² + 2mκ·u³`` is a cubic whose minimum over the piece is at
+  an end or at its one interior critical point;
+* right side of the centre ⇔ ``(κ(Q(s) − J) − N)·(κ(J_end − J) − N) > 0`` at both ends.
+
+A candidate arc failing either check is rejected (deviation reported as ``inf``). With
+``κ → 0`` all of this is continuous and becomes the statement for a line segment.
+
+**The maximum, exactly.** ``e(u) = |‖Q(u) − C‖ − r|`` is evaluated as
+``|κ‖P‖² − 2P·N| / (‖κP − N‖ + 1)`` with ``P = Q(u) − J`` (no cancellation for huge radii). Its
+interior extrema are roots of ``h(u) = κ·P·Q'/3 − N·Q'/3``, a quintic
+``c0 + c1·u + c2·u² + c3·u³ + c5·u⁵`` (``c1 = 3κ``, ``c3 = 4kκ``, ``c5 = κ(k² + m²)``; the paper's
+Theorem 2 polynomial times ``κ``). All its roots in the piece are isolated rigorously by the
+*derivative cascade*: ``h⁽⁵⁾`` is constant, so ``h⁽⁴⁾`` is monotone on the piece and has at most
+one root there; between consecutive roots of ``h⁽ᵈ⁺¹⁾`` the function ``h⁽ᵈ⁾`` is monotone, so a
+sign change brackets its only root in that sub-interval and no sign change means none. Going
+down from ``d = 4`` to ``d = 0`` with a bracketed Newton iteration at each level yields every
+root of ``h`` in the piece (up to the iteration's resolution, where ``e`` is flat). The maximum
+of ``e`` over the piece is the largest value at the piece's ends and at these roots; no sample
+is involved. The distance at the ends is the exact distance between the spiral point on the
+joint's normal line and the joint.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .roots import bracketed_newton
+from .types import BoolArray, FloatArray
+
+Float = float | FloatArray
+
+#: Root levels of the cascade: derivative orders 4, 3, 2, 1, 0 of the quintic ``h``.
+_LEVELS = (4, 3, 2, 1, 0)
+
+
+@dataclass(frozen=True, slots=True)
+class ArcDeviation:
+    """Exact largest two-sided distance of each arc from its spiral piece (canonical units).
+
+    ``value`` is ``inf`` where the piece is not a polar graph over the arc (see module text).
+    """
+
+    value: FloatArray
+    u: FloatArray
+
+
+def radial(
+    k: Float,
+    m: Float,
+    jx: Float,
+    jy: Float,
+    phi: Float,
+    kappa: Float,
+    u: FloatArray,
+) -> FloatArray:
+    """``|‖Q(u) − C‖ − r|``, the circle through ``J`` with direction ``φ`` and curvature ``κ``."""
+    u2 = u * u
+    px = u * (3.0 + k * u2) - jx
+    py = m * u2 * u - jy
+    nx, ny = -np.sin(phi), np.cos(phi)
+    numerator = kappa * (px * px + py * py) - 2.0 * (px * nx + py * ny)
+    result: FloatArray = np.abs(numerator) / (np.hypot(kappa * px - nx, kappa * py - ny) + 1.0)
+    return result
+
+
+def joint_split(
+    k: FloatArray, m: FloatArray, jx: FloatArray, jy: FloatArray, phi: FloatArray
+) -> FloatArray:
+    """The ``s ∈ [0, 1]`` where the spiral crosses the normal line at joint ``J``; NaN if none.
+
+    ``f(s) = (Q(s) − J)·T`` has ``f'(s) = 3(T_x(1 + k·s²) + T_y·m·s²) > 0`` for the directions
+    used here, so a sign change over ``[0, 1]`` brackets its only root.
+    """
+    tx, ty = np.cos(phi), np.sin(phi)
+
+    def f(s: FloatArray) -> tuple[FloatArray, FloatArray]:
+        s2 = s * s
+        value = (s * (3.0 + k * s2) - jx) * tx + (m * s2 * s - jy) * ty
+        return value, 3.0 * (tx * (1.0 + k * s2) + ty * m * s2)
+
+    lo, hi = np.zeros_like(jx), np.ones_like(jx)
+    f_lo, f_hi = f(lo)[0], f(hi)[0]
+    ok = (f_lo <= 0.0) & (f_hi >= 0.0) & (f(lo)[1] > 0.0) & (f(hi)[1] > 0.0)
+    s = np.full_like(jx, np.nan)
+    if ok.any():
+        kk, mm, xx, yy, cx, cy = k[ok], m[ok], jx[ok], jy[ok], tx[ok], ty[ok]
+
+        def g(v: FloatArray) -> tuple[FloatArray, FloatArray]:
+            v2 = v * v
+            value = (v * (3.0 + kk * v2) - xx) * cx + (mm * v2 * v - yy) * cy
+            return value, 3.0 * (cx * (1.0 + kk * v2) + cy * mm * v2)
+
+        start = np.clip(xx / 3.0, 0.0, 1.0)
+        s[ok] = bracketed_newton(g, lo[ok], hi[ok], start)
+    return s
+
+
+def arc_deviation(
+    k: FloatArray,
+    m: FloatArray,
+    jx: FloatArray,
+    jy: FloatArray,
+    phi: FloatArray,
+    kappa: FloatArray,
+    ex: FloatArray,
+    ey: FloatArray,
+    s_lo: FloatArray,
+    s_hi: FloatArray,
+) -> ArcDeviation:
+    """Exact deviation of arcs from ``J = (jx, jy)`` to ``E = (ex, ey)`` over ``[s_lo, s_hi]``."""
+    valid = _is_graph(k, m, jx, jy, phi, kappa, ex, ey, s_lo, s_hi)
+    nx, ny = -np.sin(phi), np.cos(phi)
+    coeffs = np.zeros((jx.shape[0], 6))
+    coeffs[:, 0] = -kappa * jx - nx
+    coeffs[:, 1] = 3.0 * kappa
+    coeffs[:, 2] = -kappa * (k * jx + m * jy) - (k * nx + m * ny)
+    coeffs[:, 3] = 4.0 * k * kappa
+    coeffs[:, 5] = kappa * (k * k + m * m)
+    points = _cascade_roots(coeffs, s_lo, s_hi)
+    n = points.shape[1]
+    e = radial(
+        np.repeat(k, n),
+        np.repeat(m, n),
+        np.repeat(jx, n),
+        np.repeat(jy, n),
+        np.repeat(phi, n),
+        np.repeat(kappa, n),
+        points.ravel(),
+    ).reshape(points.shape)
+    worst = np.argmax(e, axis=1)
+    rows = np.arange(points.shape[0])
+    value = np.where(valid, e[rows, worst], np.inf)
+    return ArcDeviation(value=value, u=points[rows, worst])
+
+
+def _is_graph(
+    k: FloatArray,
+    m: FloatArray,
+    jx: FloatArray,
+    jy: FloatArray,
+    phi: FloatArray,
+    kappa: FloatArray,
+    ex: FloatArray,
+    ey: FloatArray,
+    s_lo: FloatArray,
+    s_hi: FloatArray,
+) -> BoolArray:
+    """Both conditions of the module text, exactly (the cubic ``w`` and the ray sides)."""
+    tx, ty = np.cos(phi), np.sin(phi)
+    nx, ny = -ty, tx
+    w0 = kappa * jy + tx
+    w2 = kappa * (k * jy - m * jx) + k * tx + m * ty
+    w3 = 2.0 * m * kappa
+
+    def w(u: FloatArray) -> FloatArray:
+        result: FloatArray = w0 + u * u * (w2 + w3 * u)
+        return result
+
+    with np.errstate(divide="ignore", invalid="ignore"):
+        critical = np.where(w3 != 0.0, -w2 / (1.5 * w3), s_lo)
+    inside = (critical > s_lo) & (critical < s_hi)
+    w_min = np.minimum(w(s_lo), w(s_hi))
+    w_min = np.where(inside, np.minimum(w_min, w(np.where(inside, critical, s_lo))), w_min)
+    dx, dy = kappa * (ex - jx) - nx, kappa * (ey - jy) - ny
+    ok = (w_min > 0.0) & (s_hi > s_lo)
+    for s in (s_lo, s_hi):
+        s2 = s * s
+        px = kappa * (s * (3.0 + k * s2) - jx) - nx
+        py = kappa * (m * s2 * s - jy) - ny
+        ok &= px * dx + py * dy > 0.0
+    return ok
+
+
+def _cascade_roots(coeffs: FloatArray, lo: FloatArray, hi: FloatArray) -> FloatArray:
+    """Every root in ``[lo, hi]`` of each row's polynomial (ascending ``coeffs``, degree 5),
+    plus the ends and the roots of its derivatives: shape ``(n, 7)``, sorted per row.
+
+    Each level adds one (possibly duplicate) point per row, see the module text.
+    """
+    derivatives = [coeffs]
+    for _ in range(5):
+        c = derivatives[-1]
+        derivatives.append(c[:, 1:] * np.arange(1, c.shape[1]))
+    points = np.stack([lo, hi], axis=1)
+    for level in _LEVELS:
+        c = derivatives[level]
+        a, b = points[:, :-1], points[:, 1:]
+        fa, fb = _horner(c, a), _horner(c, b)
+        bracketed = ((fa < 0.0) & (fb > 0.0)) | ((fa > 0.0) & (fb < 0.0))
+        roots = a.copy()
+        rows, cols = np.nonzero(bracketed)
+        if rows.size:
+            cr = c[rows]
+            dc = (
+                derivatives[level + 1][rows] if level < 4 else cr[:, 1:] * np.arange(1, cr.shape[1])
+            )
+            sign = np.where(fa[rows, cols] < 0.0, 1.0, -1.0)
+
+            def fn(
+                x: FloatArray, cr: FloatArray = cr, dc: FloatArray = dc, sign: FloatArray = sign
+            ) -> tuple[FloatArray, FloatArray]:
+                return sign * _horner(cr, x), sign * _horner(dc, x)
+
+            a_w, b_w = a[rows, cols], b[rows, cols]
+            fa_w, fb_w = fa[rows, cols], fb[rows, cols]
+            secant = a_w + (b_w - a_w) * fa_w / (fa_w - fb_w)
+            roots[rows, cols] = bracketed_newton(fn, a_w, b_w, secant)
+        # A monotone piece holds at most one root, so one new point per level suffices only
+        # per piece; keep all pieces' roots (duplicates of ``a`` where there is none).
+        points = np.sort(np.concatenate([points, roots], axis=1), axis=1)
+    return points
+
+
+def _horner(c: FloatArray, x: FloatArray) -> FloatArray:
+    """Ascending coefficients ``c`` (rows, degree+1) at ``x`` (rows,) or (rows, j)."""
+    extra = x.ndim - 1
+    result = np.zeros_like(x)
+    for j in range(c.shape[1] - 1, -1, -1):
+        cj = c[:, j].reshape((-1,) + (1,) * extra)
+        result = result * x + cj
+    return result
