@@ -12,6 +12,7 @@ import numpy as np
 from . import canonical
 from .assemble import Frames, segment_columns, splines
 from .errors import GeometryError
+from .fewest import fewest_batch
 from .spiral import Spiral
 from .subdivide import subdivide
 from .types import ArcSpline
@@ -122,7 +123,8 @@ def approximate_many(
     if valid:
         chosen = [spirals[j] for j in valid]
         tol = np.array([tolerances[j] for j in valid], dtype=np.float64)
-        for j, result in zip(valid, _subdivide_batch(chosen, tol, limits, strategy), strict=True):
+        run = _fewest_batch if strategy == "fewest-arcs" else _subdivide_batch
+        for j, result in zip(valid, run(chosen, tol, limits, strategy), strict=True):
             results[j] = result
     return [r for r in results if r is not None]
 
@@ -142,6 +144,16 @@ def _subdivide_batch(
         _failure(spirals[j], float(tolerances[j]), why, limits) if why else done[j]
         for j, why in enumerate(outcome.failure)
     ]
+
+
+def _fewest_batch(
+    spirals: list[Spiral], tolerances: np.ndarray, limits: Limits, strategy: str
+) -> list[ArcSpline | GeometryError]:
+    """Strategy "fewest-arcs" (``service.geometry.fewest``). Subdivision runs first: its result
+    (or error) is kept wherever the greedy chain would not have fewer or equal segments."""
+    baseline = _subdivide_batch(spirals, tolerances, limits, strategy)
+    margin = np.array([_rounding_margin(s) for s in spirals], dtype=np.float64)
+    return fewest_batch(spirals, tolerances, tolerances - margin, baseline, limits.max_segments)
 
 
 def _failure(spiral: Spiral, tolerance: float, why: str, limits: Limits) -> GeometryError:
