@@ -1,0 +1,89 @@
+# arcspline: HTTP service that approximates cubic Bezier spirals by arc splines.
+#
+#   docker build -t arcspline .                       # or: podman build -t arcspline .
+#   docker run --rm -p 8000:8000 arcspline
+#
+# Behind a TLS-intercepting proxy, hand the proxy's CA bundle to the build as a secret:
+#   docker build --secret id=ca,src=/etc/ssl/certs/ca-certificates.crt -t arcspline .
+# Without the secret the build uses the public CAs (Debian's for apt, certifi's for pip).
+# The secret is only mounted into the RUN steps that download; it never lands in a layer.
+#
+# Local podman specifics (base image made with debootstrap, runc, host network) live in
+# scripts/image.sh, not here: `make image`, `make image-test`.
+
+ARG DEBIAN_IMAGE=debian:bookworm-slim
+
+# ---------------------------------------------------------------------------------------------
+# base: Debian's python3 (3.11 on bookworm), nothing else.
+FROM ${DEBIAN_IMAGE} AS base
+ENV LANG=C.UTF-8 \
+    PYTHONDONTWRITEBYTECODE=1 \
+    PYTHONUNBUFFERED=1
+RUN --mount=type=secret,id=ca \
+    set -eu; \
+    export DEBIAN_FRONTEND=noninteractive; \
+    if [ -s /run/secrets/ca ]; then set -- -o Acquire::https::CAInfo=/run/secrets/ca; fi; \
+    apt-get "$@" update; \
+    apt-get "$@" install -y --no-install-recommends python3; \
+    apt-get clean; \
+    rm -rf /var/lib/apt/lists/* /var/cache/apt/*; \
+    python3 --version
+
+# ---------------------------------------------------------------------------------------------
+# builder: a virtual environment with the pinned runtime dependencies, then the project.
+FROM base AS builder
+RUN --mount=type=secret,id=ca \
+    set -eu; \
+    export DEBIAN_FRONTEND=noninteractive; \
+    if [ -s /run/secrets/ca ]; then set -- -o Acquire::https::CAInfo=/run/secrets/ca; fi; \
+    apt-get "$@" update; \
+    apt-get "$@" install -y --no-install-recommends python3-venv; \
+    rm -rf /var/lib/apt/lists/*; \
+    python3 -m venv /opt/venv
+ENV PATH=/opt/venv/bin:$PATH \
+    PIP_NO_CACHE_DIR=1 \
+    PIP_DISABLE_PIP_VERSION_CHECK=1 \
+    PIP_DEFAULT_TIMEOUT=120
+WORKDIR /src
+# Dependencies first: this layer is reused until requirements/runtime.lock changes.
+COPY requirements/runtime.lock requirements/runtime.lock
+RUN --mount=type=secret,id=ca \
+    set -eu; \
+    if [ -s /run/secrets/ca ]; then \
+        export PIP_CERT=/run/secrets/ca REQUESTS_CA_BUNDLE=/run/secrets/ca SSL_CERT_FILE=/run/secrets/ca; \
+    fi; \
+    pip install --only-binary=:all: -r requirements/runtime.lock
+COPY pyproject.toml README.md* ./
+COPY service ./service
+RUN --mount=type=secret,id=ca \
+    set -eu; \
+    if [ -s /run/secrets/ca ]; then \
+        export PIP_CERT=/run/secrets/ca REQUESTS_CA_BUNDLE=/run/secrets/ca SSL_CERT_FILE=/run/secrets/ca; \
+    fi; \
+    pip install --no-deps . ; \
+    pip uninstall -y -q pip; \
+    python -m compileall -q /opt/venv; \
+    python -c "import service, numpy, fastapi, uvicorn"
+
+# ---------------------------------------------------------------------------------------------
+# runtime: python3 + the venv, unprivileged, read-only-root friendly.
+FROM base AS runtime
+RUN set -eu; \
+    groupadd --gid 10001 arcspline; \
+    useradd --uid 10001 --gid arcspline --no-create-home --no-log-init \
+        --home-dir /nonexistent --shell /usr/sbin/nologin arcspline
+COPY --from=builder /opt/venv /opt/venv
+# PYTHONSAFEPATH: `python -m service` imports the installed package, never the working dir.
+ENV PATH=/opt/venv/bin:$PATH \
+    PYTHONSAFEPATH=1
+WORKDIR /
+# Numeric user, so Kubernetes' runAsNonRoot can verify it without reading /etc/passwd.
+USER 10001:10001
+EXPOSE 8000
+STOPSIGNAL SIGTERM
+# No curl in the image: probe with the standard library. The port follows ARCSPLINE_PORT when
+# the container is started on another port (the command line sets it, see CMD).
+HEALTHCHECK --interval=30s --timeout=5s --start-period=20s --retries=3 \
+    CMD ["python", "-c", "import os, urllib.request; urllib.request.urlopen('http://127.0.0.1:%s/healthz' % os.environ.get('ARCSPLINE_PORT', '8000'), timeout=4)"]
+# One server process per container; the geometry process pool lives inside it.
+CMD ["python", "-m", "service", "--host", "0.0.0.0", "--port", "8000"]
