@@ -7,10 +7,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+import numpy.typing as npt
 
 from . import canonical
 from .biarc import Biarcs
-from .roots import bracketed_newton
+from .roots import polynomial_root
 from .types import FloatArray
 
 
@@ -45,12 +46,9 @@ def split_parameter(k: FloatArray, m: FloatArray, b: Biarcs) -> FloatArray:
     c1 = 3.0 * hx + 3.0 * b.u0 * b.u0 * big_k
     c0 = -b.join_distance * np.cos(0.5 * b.alpha_rad)
 
-    def cubic(v: FloatArray) -> tuple[FloatArray, FloatArray]:
-        return ((big_k * v + c2) * v + c1) * v + c0, (3.0 * big_k * v + 2.0 * c2) * v + c1
-
     h = b.u1 - b.u0
     start = h * (-c0 / b.chord_length)  # where G projects on the chord, as a parameter guess
-    v = bracketed_newton(cubic, np.zeros_like(h), h, start)
+    v = polynomial_root((big_k, c2, c1, c0), np.zeros_like(h), h, start)
     return b.u0 + v
 
 
@@ -64,48 +62,42 @@ def max_deviation(k: FloatArray, m: FloatArray, b: Biarcs, t: FloatArray) -> Dev
     deviation at ``t`` is ``‖Q(t) − G‖``. Both sides are solved in one stacked array.
     """
     n = t.shape[0]
-    ui = np.concatenate([b.u0, b.u1])
-    lo = np.concatenate([b.u0, t])
-    hi = np.concatenate([t, b.u1])
-    kk, mm = np.concatenate([k, k]), np.concatenate([m, m])
-    phi = np.concatenate([b.phi0_rad, b.phi1_rad])
-    r = np.concatenate([b.radius0, b.radius1])
+    ui = np.concatenate((b.u0, b.u1))
+    lo = np.concatenate((b.u0, t))
+    hi = np.concatenate((t, b.u1))
+    kk, mm = np.concatenate((k, k)), np.concatenate((m, m))
+    phi = np.concatenate((b.phi0_rad, b.phi1_rad))
+    r = np.concatenate((b.radius0, b.radius1))
     nx, ny = -np.sin(phi), np.cos(phi)
     ax, ay = canonical.point(kk, mm, ui)
     alpha2 = -(kk * (ax + r * nx) + mm * (ay + r * ny))
-    alpha3 = 4.0 * kk
     alpha4 = kk * kk + mm * mm
     ui2 = ui * ui
-    # q(u) = c0 + c1·u + c2·u² + c3·u³ + α4·u⁴ after expanding the symmetric sums in u_i.
-    c0 = 3.0 + alpha2 * ui + ui2 * (alpha3 + alpha4 * ui2)
-    c1 = alpha2 + ui * (alpha3 + alpha4 * ui2)
-    c2 = alpha3 + alpha4 * ui2
+    # q(u) = c0 + c1·u + c2·u² + c3·u³ + α4·u⁴ after expanding the symmetric sums in u_i
+    # (α3 = 4k); the slope's coefficients are formed once, not per Newton step.
+    c2 = 4.0 * kk + alpha4 * ui2
+    c1 = alpha2 + ui * c2
+    c0 = 3.0 + ui * c1
     c3 = alpha4 * ui
-
-    def quartic(u: FloatArray) -> FloatArray:
-        result: FloatArray = (((alpha4 * u + c3) * u + c2) * u + c1) * u + c0
-        return result
-
-    q_lo, q_hi = quartic(lo), quartic(hi)
+    q_lo = (((alpha4 * lo + c3) * lo + c2) * lo + c1) * lo + c0
+    q_hi = (((alpha4 * hi + c3) * hi + c2) * hi + c1) * hi + c0
     bracketed = q_lo * q_hi < 0.0
-    # Only bracketed sides have an interior maximum; solve for those alone.
-    which = np.flatnonzero(bracketed)
-    root = lo.copy()
-    if which.size:
-        sign = np.where(q_lo[which] < 0.0, 1.0, -1.0)  # orient so the function rises
-        w_alpha4, w_c3, w_c2, w_c1, w_c0 = (
-            alpha4[which], c3[which], c2[which], c1[which], c0[which]
-        )
-
-        def oriented(u: FloatArray) -> tuple[FloatArray, FloatArray]:
-            value = (((w_alpha4 * u + w_c3) * u + w_c2) * u + w_c1) * u + w_c0
-            slope = ((4.0 * w_alpha4 * u + 3.0 * w_c3) * u + 2.0 * w_c2) * u + w_c1
-            return sign * value, sign * slope
-
-        lo_w, hi_w, q_lo_w = lo[which], hi[which], q_lo[which]
-        secant = lo_w + (hi_w - lo_w) * q_lo_w / (q_lo_w - q_hi[which])
-        root[which] = bracketed_newton(oriented, lo_w, hi_w, secant)
-    side = np.where(bracketed, _radial_deviation(kk, mm, ui, phi, r, root), 0.0)
+    # Only bracketed sides have an interior maximum; solve for those alone (usually all).
+    every = bool(bracketed.all())
+    which: slice | npt.NDArray[np.intp] = slice(None) if every else np.flatnonzero(bracketed)
+    root = lo if every else lo.copy()
+    w_lo, w_hi, w_q_lo = lo[which], hi[which], q_lo[which]
+    if w_lo.size:
+        w_a4, w_c3, w_c2, w_c1, w_c0 = alpha4[which], c3[which], c2[which], c1[which], c0[which]
+        secant = w_lo + (w_hi - w_lo) * w_q_lo / (w_q_lo - q_hi[which])
+        found = polynomial_root((w_a4, w_c3, w_c2, w_c1, w_c0), w_lo, w_hi, secant)
+        if every:
+            root = found
+        else:
+            root[which] = found
+    side = _radial_deviation_n(kk, mm, ui, nx, ny, r, root)
+    if not every:
+        side = np.where(bracketed, side, 0.0)
 
     tx, ty = canonical.offset(k, m, b.u0, t)
     at_t = np.hypot(tx - b.join_dx, ty - b.join_dy)
@@ -138,4 +130,21 @@ def _radial_deviation(
     nx, ny = -np.sin(phi), np.cos(phi)
     numerator = px * px + py * py - 2.0 * r * (px * nx + py * ny)
     result: FloatArray = np.abs(numerator) / (np.hypot(px - r * nx, py - r * ny) + r)
+    return result
+
+
+def _radial_deviation_n(
+    k: FloatArray,
+    m: FloatArray,
+    ui: FloatArray,
+    nx: FloatArray,
+    ny: FloatArray,
+    r: FloatArray,
+    u: FloatArray,
+) -> FloatArray:
+    """:func:`_radial_deviation` with the unit normal ``(nx, ny) = (−sin φ, cos φ)`` given."""
+    px, py = canonical.offset(k, m, ui, u)
+    rx, ry = r * nx, r * ny
+    numerator = px * px + py * py - 2.0 * (px * rx + py * ry)
+    result: FloatArray = np.abs(numerator) / (np.hypot(px - rx, py - ry) + r)
     return result
