@@ -36,6 +36,7 @@ from . import canonical
 from .assemble import FLAT_SWEEP_RAD, Frames, splines
 from .errors import GeometryError
 from .fewest_exact import arc_deviation, joint_split, radial
+from .fewest_tail import best_triarc
 from .spiral import Spiral
 from .types import ArcSpline, BoolArray, FloatArray, SegmentColumns
 
@@ -185,7 +186,8 @@ def _search(
         )
         uu, ll = np.meshgrid(u_grid, lams, indexing="ij")
         b = _biarcs(k, m, u0, uu.ravel(), ll.ravel())
-        dev = _screen(k, m, u0, b).reshape(uu.shape)
+        with np.errstate(invalid="ignore"):  # invalid candidates are NaN, then masked as inf
+            dev = _screen(k, m, u0, b).reshape(uu.shape)
         fits = dev <= screen_tol
         rows = np.flatnonzero(fits.any(axis=1))
         if rows.size == 0:
@@ -239,7 +241,29 @@ def fewest_chain(k: float, m: float, tol: float, max_arcs: int) -> Chain | None:
         dev += [d0, d1]
         u_dev += [w0, w1]
         u0 = u1
-    return Chain(*(np.array(v, dtype=np.float64) for v in (jx, jy, phi, kappa, s, dev, u_dev)))
+    chain = Chain(*(np.array(v, dtype=np.float64) for v in (jx, jy, phi, kappa, s, dev, u_dev)))
+    return _merge_tail(k, m, chain, tol)
+
+
+def _merge_tail(k: float, m: float, chain: Chain, tol: float) -> Chain:
+    """The chain with its last two biarcs replaced by a proven triarc, if one exists."""
+    n = chain.kappa.shape[0]
+    if n < 4:
+        return chain
+    found = best_triarc(k, m, float(chain.s[n - 4]), tol)
+    if found is None:
+        return chain
+    t, dev, u_dev = found
+    keep = n - 4
+    return Chain(
+        jx=np.concatenate([chain.jx[:keep], t.x[0]]),
+        jy=np.concatenate([chain.jy[:keep], t.y[0]]),
+        phi=np.concatenate([chain.phi[:keep], t.phi[0]]),
+        kappa=np.concatenate([chain.kappa[:keep], t.kappa[0]]),
+        s=np.concatenate([chain.s[:keep], t.s[0]]),
+        dev=np.concatenate([chain.dev[:keep], dev]),
+        u_dev=np.concatenate([chain.u_dev[:keep], u_dev]),
+    )
 
 
 def chain_columns(chain: Chain, spiral: Spiral) -> SegmentColumns:
