@@ -45,8 +45,11 @@ SAMPLES = 24
 #: Grid of the first round: ``u1 − u0 = (1 − u0)·2^(−j/4)``, ``j = 0 … U_STEPS − 1``.
 U_STEPS = 64
 #: Join-parameter grid of the first round, and the size of each refining round's grids.
-LAMBDAS = 32
-REFINE = 16
+LAMBDAS = 24
+REFINE = 12
+#: The first grid around the previous piece's span: this many octaves either side, points.
+HINT_OCTAVES = 0.75
+HINT_STEPS = 12
 #: How many screened candidates are verified exactly at once.
 VERIFY = 8
 
@@ -54,6 +57,7 @@ VERIFY = 8
 SCREEN_FACTORS = (0.999, 0.99, 0.95, 0.8, 0.5)
 
 _SAMPLE_T = (np.arange(SAMPLES) + 0.5) / SAMPLES
+_LAMBDA_GRID = (np.arange(LAMBDAS) + 0.5) / LAMBDAS
 
 
 @dataclass(frozen=True, slots=True)
@@ -79,6 +83,7 @@ class _Biarcs:
     """Candidate biarcs from ``A0 = Q(u0)`` (shared) to ``Q(u1)``, one per element."""
 
     u1: FloatArray
+    lam: FloatArray
     phi0: FloatArray
     psi: FloatArray
     phi1: FloatArray
@@ -111,7 +116,7 @@ def _biarcs(k: float, m: float, u0: float, u1: FloatArray, lam: FloatArray) -> _
     kk, mm = np.full_like(u1, k), np.full_like(u1, m)
     split = joint_split(kk, mm, gx, gy, psi)
     ok &= (split > u0) & (split < u1)
-    return _Biarcs(u1, phi0, psi, phi1, kappa0, kappa1, gx, gy, split, ok)
+    return _Biarcs(u1, lam, phi0, psi, phi1, kappa0, kappa1, gx, gy, split, ok)
 
 
 def _screen(k: float, m: float, u0: float, b: _Biarcs) -> FloatArray:
@@ -154,52 +159,72 @@ def _take(b: _Biarcs, i: int) -> _Biarcs:
 
 
 def _next_biarc(
-    k: float, m: float, u0: float, tol: float
+    k: float, m: float, u0: float, tol: float, hint: float
 ) -> tuple[_Biarcs, tuple[float, ...]] | None:
     """The verified biarc from ``u0`` reaching the largest ``u1`` found, or None.
 
     Sampling underestimates the deviation slightly, so screening aims a little below the
     tolerance, and lower still when none of the screened candidates passes the proof.
+    ``hint`` is the previous piece's parameter span (0 for none): neighbouring pieces are
+    about as long, so the first grid is placed around it.
     """
     for factor in SCREEN_FACTORS:
-        found = _search(k, m, u0, tol, factor * tol)
+        found = _search(k, m, u0, tol, factor * tol, hint)
         if found is not None:
             return found
     return None
 
 
+def _first_round(
+    k: float, m: float, u0: float, screen_tol: float, u_grid: FloatArray
+) -> tuple[_Biarcs, FloatArray, BoolArray]:
+    uu, ll = np.meshgrid(u_grid, _LAMBDA_GRID, indexing="ij")
+    b = _biarcs(k, m, u0, uu.ravel(), ll.ravel())
+    with np.errstate(invalid="ignore"):  # invalid candidates are NaN, then masked as inf
+        dev = _screen(k, m, u0, b).reshape(uu.shape)
+    return b, dev, dev <= screen_tol
+
+
 def _search(
-    k: float, m: float, u0: float, tol: float, screen_tol: float
+    k: float, m: float, u0: float, tol: float, screen_tol: float, hint: float
 ) -> tuple[_Biarcs, tuple[float, ...]] | None:
     span = 1.0 - u0
-    u_grid = u0 + span * 2.0 ** (-np.arange(U_STEPS) / 4.0)
-    u_grid[0] = 1.0
-    lam_grid = (np.arange(LAMBDAS) + 0.5) / LAMBDAS
-    lam_width = 1.0 / LAMBDAS
-    best_lam = 0.5
-    feasible_u = None
-    for round_ in range(3):
-        lams = (
-            lam_grid
-            if round_ == 0
-            else np.clip(best_lam + lam_width * np.linspace(-1.0, 1.0, REFINE), 1e-3, 1.0 - 1e-3)
-        )
-        uu, ll = np.meshgrid(u_grid, lams, indexing="ij")
-        b = _biarcs(k, m, u0, uu.ravel(), ll.ravel())
-        with np.errstate(invalid="ignore"):  # invalid candidates are NaN, then masked as inf
-            dev = _screen(k, m, u0, b).reshape(uu.shape)
-        fits = dev <= screen_tol
+    full = u0 + span * 2.0 ** (-np.arange(U_STEPS) / 4.0)
+    full[0] = 1.0
+    u_grid = full
+    if 0.0 < hint < span:
+        near = u0 + hint * 2.0 ** np.linspace(-HINT_OCTAVES, HINT_OCTAVES, HINT_STEPS)
+        u_grid = np.concatenate([[1.0], near[near < 1.0][::-1]])
+    b, dev, fits = _first_round(k, m, u0, screen_tol, u_grid)
+    rows = np.flatnonzero(fits.any(axis=1))
+    # Outside the hinted window (nothing fits, or the longest candidate below 1 fits): retry
+    # on the full geometric grid.
+    if u_grid is not full and (rows.size == 0 or (rows.min() == 1 and u_grid.size > 1)):
+        u_grid = full
+        b, dev, fits = _first_round(k, m, u0, screen_tol, u_grid)
         rows = np.flatnonzero(fits.any(axis=1))
-        if rows.size == 0:
-            break
+    if rows.size == 0:
+        return None
+    feasible_u = (b, dev, fits)
+    lam_width = 1.0 / LAMBDAS
+    for _ in range(2):
         top = rows[np.argmax(u_grid[rows])]
-        feasible_u = (b, dev, fits)
-        best_lam = float(lams[np.argmin(dev[top])])
+        best_lam = float(b.lam.reshape(dev.shape)[top, np.argmin(dev[top])])
         if u_grid[top] >= 1.0:
             break
         above = u_grid[u_grid > u_grid[top]]
         hi = float(above.min()) if above.size else 1.0
         u_grid = np.linspace(u_grid[top], hi, REFINE + 2)[:-1]
+        lams = np.clip(best_lam + lam_width * np.linspace(-1.0, 1.0, REFINE), 1e-3, 1.0 - 1e-3)
+        uu, ll = np.meshgrid(u_grid, lams, indexing="ij")
+        b = _biarcs(k, m, u0, uu.ravel(), ll.ravel())
+        with np.errstate(invalid="ignore"):
+            dev = _screen(k, m, u0, b).reshape(uu.shape)
+        fits = dev <= screen_tol
+        rows = np.flatnonzero(fits.any(axis=1))
+        if rows.size == 0:
+            break
+        feasible_u = (b, dev, fits)
         lam_width *= 0.5
     if feasible_u is None:
         return None
@@ -221,11 +246,11 @@ def fewest_chain(k: float, m: float, tol: float, max_arcs: int) -> Chain | None:
     kappa: list[float] = []
     dev: list[float] = []
     u_dev: list[float] = []
-    u0 = 0.0
+    u0, hint = 0.0, 0.0
     while u0 < 1.0:
         if len(kappa) + 2 > max_arcs:
             return None
-        found = _next_biarc(k, m, u0, tol)
+        found = _next_biarc(k, m, u0, tol, hint)
         if found is None:
             return None
         b, (d0, w0, d1, w1) = found
@@ -240,7 +265,7 @@ def fewest_chain(k: float, m: float, tol: float, max_arcs: int) -> Chain | None:
         s += [float(b.split[0]), u1]
         dev += [d0, d1]
         u_dev += [w0, w1]
-        u0 = u1
+        hint, u0 = u1 - u0, u1
     chain = Chain(*(np.array(v, dtype=np.float64) for v in (jx, jy, phi, kappa, s, dev, u_dev)))
     return _merge_tail(k, m, chain, tol)
 

@@ -26,11 +26,11 @@ from . import canonical
 from .fewest_exact import arc_deviation, joint_split, radial
 from .types import BoolArray, FloatArray
 
-_SAMPLES = 24
+_SAMPLES = 16
 _T = (np.arange(_SAMPLES) + 0.5) / _SAMPLES
 #: Pattern-search rounds and points per axis of each round.
-_ROUNDS = 10
-_AXIS = 7
+_ROUNDS = 8
+_AXIS = 5
 
 
 @dataclass(frozen=True, slots=True)
