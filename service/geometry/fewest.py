@@ -42,8 +42,10 @@ from .types import ArcSpline, BoolArray, FloatArray, SegmentColumns
 
 #: Screening samples per arc (a lower bound on its deviation; the proof comes after).
 SAMPLES = 24
-#: Grid of the first round: ``u1 − u0 = (1 − u0)·2^(−j/4)``, ``j = 0 … U_STEPS − 1``.
-U_STEPS = 64
+#: Grid of the first round: ``u1 − u0 = (1 − u0)·2^(−j/2)``, ``j = 0 … U_STEPS − 1``.
+U_STEPS = 32
+#: Samples per arc in the first round, which only brackets the longest piece.
+COARSE_SAMPLES = 8
 #: Join-parameter grid of the first round, and the size of each refining round's grids.
 LAMBDAS = 24
 REFINE = 12
@@ -57,6 +59,7 @@ VERIFY = 8
 SCREEN_FACTORS = (0.999, 0.99, 0.95, 0.8, 0.5)
 
 _SAMPLE_T = (np.arange(SAMPLES) + 0.5) / SAMPLES
+_COARSE_T = (np.arange(COARSE_SAMPLES) + 0.5) / COARSE_SAMPLES
 _LAMBDA_GRID = (np.arange(LAMBDAS) + 0.5) / LAMBDAS
 
 
@@ -119,11 +122,13 @@ def _biarcs(k: float, m: float, u0: float, u1: FloatArray, lam: FloatArray) -> _
     return _Biarcs(u1, lam, phi0, psi, phi1, kappa0, kappa1, gx, gy, split, ok)
 
 
-def _screen(k: float, m: float, u0: float, b: _Biarcs) -> FloatArray:
+def _screen(
+    k: float, m: float, u0: float, b: _Biarcs, samples: FloatArray = _SAMPLE_T
+) -> FloatArray:
     """Largest sampled radial distance of each candidate biarc (a lower bound), inf if invalid."""
     split = np.where(b.ok, b.split, 0.5 * (u0 + b.u1))
     ax, ay = canonical.point(k, m, u0)
-    t = _SAMPLE_T[None, :]
+    t = samples[None, :]
     ua = u0 + (split - u0)[:, None] * t
     ub = split[:, None] + (b.u1 - split)[:, None] * t
     e0 = radial(k, m, ax, ay, b.phi0[:, None], b.kappa0[:, None], ua).max(axis=1)
@@ -181,7 +186,7 @@ def _first_round(
     uu, ll = np.meshgrid(u_grid, _LAMBDA_GRID, indexing="ij")
     b = _biarcs(k, m, u0, uu.ravel(), ll.ravel())
     with np.errstate(invalid="ignore"):  # invalid candidates are NaN, then masked as inf
-        dev = _screen(k, m, u0, b).reshape(uu.shape)
+        dev = _screen(k, m, u0, b, _COARSE_T).reshape(uu.shape)
     return b, dev, dev <= screen_tol
 
 
@@ -189,7 +194,7 @@ def _search(
     k: float, m: float, u0: float, tol: float, screen_tol: float, hint: float
 ) -> tuple[_Biarcs, tuple[float, ...]] | None:
     span = 1.0 - u0
-    full = u0 + span * 2.0 ** (-np.arange(U_STEPS) / 4.0)
+    full = u0 + span * 2.0 ** (-np.arange(U_STEPS) / 2.0)
     full[0] = 1.0
     u_grid = full
     if 0.0 < hint < span:

@@ -113,14 +113,14 @@ def best_triarc(
 ) -> tuple[Triarc, FloatArray, FloatArray] | None:
     """A proven triarc over ``[ua, 1]`` within ``tol``: ``(triarc, dev (3,), u_dev (3,))``."""
     span = 1.0 - ua
-    v_axis = ua + span * np.linspace(0.15, 0.7, 12)
-    d_axis = tol * np.linspace(-1.0, 1.0, 9)
-    l_axis = np.linspace(0.05, 0.95, 13)
+    v_axis = ua + span * np.linspace(0.15, 0.7, 8)
+    d_axis = tol * np.linspace(-1.0, 1.0, 5)
+    l_axis = np.linspace(0.05, 0.95, 9)
     vv, dd, ll = (a.ravel() for a in np.meshgrid(v_axis, d_axis, l_axis, indexing="ij"))
     score = _screen(k, m, _triarcs(k, m, ua, vv, dd, ll))
     best = int(np.argmin(score))
     centre = np.array([vv[best], dd[best], ll[best]])
-    width = np.array([span * 0.05, tol * 0.25, 0.075])
+    width = np.array([span * 0.07, tol * 0.5, 0.1])
     steps = np.linspace(-1.0, 1.0, _AXIS)
     best_score = float(score[best])
     for _ in range(_ROUNDS):
