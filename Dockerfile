@@ -43,7 +43,8 @@ RUN --mount=type=secret,id=ca \
 ENV PATH=/opt/venv/bin:$PATH \
     PIP_NO_CACHE_DIR=1 \
     PIP_DISABLE_PIP_VERSION_CHECK=1 \
-    PIP_DEFAULT_TIMEOUT=120
+    PIP_DEFAULT_TIMEOUT=120 \
+    PIP_PROGRESS_BAR=off
 WORKDIR /src
 # Dependencies first: this layer is reused until requirements/runtime.lock changes.
 COPY requirements/runtime.lock requirements/runtime.lock
