@@ -37,15 +37,22 @@ class Frames:
 
     @classmethod
     def of(cls, spirals: list[Spiral]) -> Frames:
-        tangent = np.array([s.start_tangent for s in spirals], dtype=np.float64).reshape(-1, 2)
+        # One pass over the spirals, one array: (B0, T0, a, σ, B3) per row.
+        table = np.array(
+            [
+                (*s.start, *s.start_tangent, s.a, s.turn_direction, *s.control_points[3])
+                for s in spirals
+            ],
+            dtype=np.float64,
+        ).reshape(-1, 8)
         return cls(
-            origin=np.array([s.start for s in spirals], dtype=np.float64).reshape(-1, 2),
-            scale=np.array([s.a for s in spirals], dtype=np.float64),
-            cos_phi=tangent[:, 0],
-            sin_phi=tangent[:, 1],
-            phi_rad=np.arctan2(tangent[:, 1], tangent[:, 0]),
-            mirror=np.array([s.turn_direction for s in spirals], dtype=np.float64),
-            end_point=np.array([s.control_points[3] for s in spirals]).reshape(-1, 2),
+            origin=table[:, 0:2],
+            scale=table[:, 4],
+            cos_phi=table[:, 2],
+            sin_phi=table[:, 3],
+            phi_rad=np.arctan2(table[:, 3], table[:, 2]),
+            mirror=table[:, 5],
+            end_point=table[:, 6:8],
         )
 
     def point(self, i: IntArray, x: FloatArray, y: FloatArray) -> FloatArray:
@@ -64,9 +71,7 @@ class Frames:
         return np.asarray(np.arctan2(np.sin(world), np.cos(world)))
 
 
-def segment_columns(
-    kept: Kept, k: FloatArray, m: FloatArray, frames: Frames
-) -> SegmentColumns:
+def segment_columns(kept: Kept, k: FloatArray, m: FloatArray, frames: Frames) -> SegmentColumns:
     """Two rows per kept biarc (arc 0, then arc 1), in the order of ``kept``."""
     b, d, i = kept.biarcs, kept.deviation, kept.spiral
     kk, mm = k[i], m[i]
@@ -101,7 +106,8 @@ def segment_columns(
     )
     max_dev = interleave(scale * d.arc0, scale * d.arc1)
     if not is_arc.all():
-        max_dev = np.where(is_arc, max_dev, _flat_deviation(kept, k, m, is_arc) * np.repeat(scale, 2))
+        flat = _flat_deviation(kept, k, m, is_arc) * np.repeat(scale, 2)
+        max_dev = np.where(is_arc, max_dev, flat)
     return SegmentColumns(
         is_arc=is_arc,
         start=start,
@@ -162,16 +168,13 @@ def splines(
     """Cut batch columns into one :class:`ArcSpline` per spiral (row views, no copies)."""
     n = len(spirals)
     counts = np.bincount(spiral_of_row, minlength=n)
-    bounds = np.concatenate([[0], np.cumsum(counts)])
-    stats = _stats(columns, counts, bounds, spirals, tolerances)
+    bounds = np.concatenate(([0], np.cumsum(counts))).tolist()
+    stats = _stats(columns, counts, np.asarray(bounds), spirals, tolerances)
     return [
-        ArcSpline(
-            columns=columns.rows(int(bounds[j]), int(bounds[j + 1])),
-            stats=stats[j],
-            tolerance=float(tolerances[j]),
-            strategy=strategy,
+        ArcSpline(columns=columns.rows(begin, end), stats=st, tolerance=tol, strategy=strategy)
+        for begin, end, st, tol in zip(
+            bounds[:-1], bounds[1:], stats, tolerances.tolist(), strict=True
         )
-        for j in range(n)
     ]
 
 
@@ -182,6 +185,7 @@ def _stats(
     spirals: list[Spiral],
     tolerances: FloatArray,
 ) -> list[SplineStats]:
+    """Per-spline statistics by segmented reductions over the batch columns."""
     starts = bounds[:-1]
     nonempty = counts > 0
     at = np.where(nonempty, starts, 0)
@@ -191,7 +195,7 @@ def _stats(
             return np.full(counts.shape, empty)
         return np.where(nonempty, ufunc.reduceat(values, at), empty)
 
-    arcs = reduce(np.add, columns.is_arc.astype(np.float64), 0.0)
+    arcs = reduce(np.add, columns.is_arc.astype(np.float64), 0.0).astype(np.intp)
     dev = columns.max_deviation
     max_dev = reduce(np.maximum, dev, 0.0)
     mean_dev = reduce(np.add, dev, 0.0) / np.maximum(counts, 1)
@@ -206,25 +210,39 @@ def _stats(
     owner = np.repeat(np.arange(counts.size), counts)[rows]
     first_max[owner[::-1]] = rows[::-1]
     u_max = columns.u_at_max_deviation
+    u_at = np.where(first_max >= 0, u_max[first_max] if u_max.size else 0.0, 0.0)
     lengths = spiral_lengths(spirals)
-    result = []
-    for j in range(counts.size):
-        arc_count = int(arcs[j])
-        result.append(
-            SplineStats(
-                arc_count=arc_count,
-                line_count=int(counts[j]) - arc_count,
-                max_deviation=float(max_dev[j]),
-                u_at_max_deviation=float(u_max[first_max[j]]) if first_max[j] >= 0 else 0.0,
-                deviation_ratio=float(max_dev[j] / tolerances[j]),
-                mean_segment_deviation=float(mean_dev[j]),
-                spiral_length=float(lengths[j]),
-                spline_length=float(total[j]),
-                min_radius=None if arc_count == 0 else float(min_r[j]),
-                max_radius=None if arc_count == 0 else float(max_r[j]),
-            )
+    # Plain Python numbers, converted once per column rather than once per value.
+    arc_counts = arcs.tolist()
+    min_r_list = [None if n == 0 else r for n, r in zip(arc_counts, min_r.tolist(), strict=True)]
+    max_r_list = [None if n == 0 else r for n, r in zip(arc_counts, max_r.tolist(), strict=True)]
+    return [
+        SplineStats(
+            arc_count=n_arc,
+            line_count=n_seg - n_arc,
+            max_deviation=mx,
+            u_at_max_deviation=u,
+            deviation_ratio=ratio,
+            mean_segment_deviation=mean,
+            spiral_length=length,
+            spline_length=spline,
+            min_radius=r_min,
+            max_radius=r_max,
         )
-    return result
+        for n_arc, n_seg, mx, u, ratio, mean, length, spline, r_min, r_max in zip(
+            arc_counts,
+            counts.tolist(),
+            max_dev.tolist(),
+            u_at.tolist(),
+            (max_dev / tolerances).tolist(),
+            mean_dev.tolist(),
+            lengths.tolist(),
+            total.tolist(),
+            min_r_list,
+            max_r_list,
+            strict=True,
+        )
+    ]
 
 
 _NODES, _WEIGHTS = np.polynomial.legendre.leggauss(24)
@@ -233,8 +251,8 @@ _NODES, _WEIGHTS = np.polynomial.legendre.leggauss(24)
 def spiral_lengths(spirals: list[Spiral]) -> FloatArray:
     """Arc lengths of many spirals at once: canonical speed ``3·‖(1 + k·u², m·u²)‖`` by
     24-point Gauss–Legendre on four sub-intervals (as :meth:`Spiral.arclen`), times ``a``."""
-    theta = np.array([s.turn_angle_rad for s in spirals], dtype=np.float64)
-    scale = np.array([s.a for s in spirals], dtype=np.float64)
+    table = np.array([(s.turn_angle_rad, s.a) for s in spirals], dtype=np.float64)
+    theta, scale = table.reshape(-1, 2).T
     k, m = canonical.coefficients(theta)
     u = (np.arange(4)[:, None] + 0.5 + 0.5 * _NODES[None, :]).ravel() / 4.0
     w2 = (u * u)[None, :]

@@ -22,7 +22,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import canonical
 from .types import FloatArray
 
 
@@ -50,20 +49,29 @@ class Biarcs:
 
 
 def incentre_biarcs(k: FloatArray, m: FloatArray, u0: FloatArray, u1: FloatArray) -> Biarcs:
-    """The incentre biarc of each piece ``[u0, u1]`` (``u0 < u1``) of spirals ``(k, m)``."""
+    """The incentre biarc of each piece ``[u0, u1]`` (``u0 < u1``) of spirals ``(k, m)``.
+
+    The directions at ``u0``, along the chord and at ``u1`` are ``(1 + k·w, m·w)`` for
+    ``w = u0²``, ``σ/3`` and ``u1²`` (``σ = u0² + u0·u1 + u1²``), formed once; the angles
+    between them come from their exact cross products (as in ``canonical.turn_rad``).
+    """
     h = u1 - u0
     w0, w1 = u0 * u0, u1 * u1
-    w_chord = (w1 + u1 * u0 + w0) / 3.0  # the chord is parallel to (1 + k·w, m·w) here
-    alpha = canonical.turn_rad(k, m, w0, w_chord, h * (u1 + 2.0 * u0) / 3.0)
-    beta = canonical.turn_rad(k, m, w_chord, w1, h * (2.0 * u1 + u0) / 3.0)
-    phi0 = canonical.direction_rad(k, m, w0)
+    sigma = w1 + u1 * u0 + w0
+    w_chord = sigma / 3.0  # the chord is parallel to (1 + k·w, m·w) here
+    x0, xc, x1 = 1.0 + k * w0, 1.0 + k * w_chord, 1.0 + k * w1
+    y0, yc, y1 = m * w0, m * w_chord, m * w1
+    alpha = np.arctan2(m * (h * (u1 + 2.0 * u0) / 3.0), x0 * xc + y0 * yc)
+    beta = np.arctan2(m * (h * (2.0 * u1 + u0) / 3.0), xc * x1 + yc * y1)
+    phi0 = np.arctan2(y0, x0)
     chord_dir = phi0 + alpha
-    dx, dy = canonical.offset(k, m, u0, u1)
-    length = np.hypot(dx, dy)
-    sin_half_a, sin_half_b = np.sin(0.5 * alpha), np.sin(0.5 * beta)
-    chord_over_s = length / np.sin(0.5 * (alpha + beta))
+    # Q(u1) − Q(u0) = h·(3 + k·σ, m·σ) (canonical.offset).
+    length = np.hypot(h * (3.0 + k * sigma), h * m * sigma)
+    half_a, half_b = 0.5 * alpha, 0.5 * beta
+    sin_half_a, sin_half_b = np.sin(half_a), np.sin(half_b)
+    chord_over_s = length / np.sin(half_a + half_b)
     d0 = chord_over_s * sin_half_b
-    bisector = chord_dir - 0.5 * alpha
+    bisector = phi0 + half_a
     return Biarcs(
         u0=u0,
         u1=u1,

@@ -51,9 +51,7 @@ class Subdivision:
     failure: list[str]
 
 
-def subdivide(
-    k: FloatArray, m: FloatArray, tolerance: FloatArray, max_biarcs: int
-) -> Subdivision:
+def subdivide(k: FloatArray, m: FloatArray, tolerance: FloatArray, max_biarcs: int) -> Subdivision:
     """Walton & Meek's subdivision for canonical spirals ``(k, m)`` at canonical tolerances.
 
     A spiral stops with ``segment_limit`` as soon as the biarcs it has kept plus the pieces
@@ -65,7 +63,9 @@ def subdivide(
     kept_count = np.zeros(n, dtype=np.intp)
     spiral = np.arange(n, dtype=np.intp)
     u0, u1 = np.zeros(n), np.ones(n)
-    kept: list[tuple[IntArray, Biarcs, Deviation]] = []
+    # Every level's pieces and which of them are kept; the kept rows are gathered once at
+    # the end, not field by field at every level.
+    levels: list[tuple[IntArray, Biarcs, Deviation, npt.NDArray[np.bool_]]] = []
     for _ in range(MAX_LEVELS):
         if spiral.size == 0:
             break
@@ -73,22 +73,24 @@ def subdivide(
         biarcs = incentre_biarcs(kk, mm, u0, u1)
         deviation = max_deviation(kk, mm, biarcs, split_parameter(kk, mm, biarcs))
         ok = deviation.value <= tolerance[spiral]
-        if ok.any():
-            kept.append((spiral[ok], _take(biarcs, ok), _take(deviation, ok)))
-            kept_count += np.bincount(spiral[ok], minlength=n)
+        levels.append((spiral, biarcs, deviation, ok))
         split = ~ok
-        spiral, lo, hi, at = spiral[split], u0[split], u1[split], deviation.u[split]
-        stuck = (at - lo <= 4.0 * _EPS * hi) | (hi - at <= 4.0 * _EPS * hi)
-        _fail(failure, failed, spiral[stuck], "precision")
-        pending = 2 * np.bincount(spiral, minlength=n)
-        _fail(failure, failed, np.flatnonzero(kept_count + pending > max_biarcs), "segment_limit")
-        live = ~failed[spiral]
-        spiral, lo, hi, at = spiral[live], lo[live], hi[live], at[live]
-        spiral = np.concatenate([spiral, spiral])
-        u0, u1 = np.concatenate([lo, at]), np.concatenate([at, hi])
+        at = deviation.u
+        stuck = split & ((at - u0 <= 4.0 * _EPS * u1) | (u1 - at <= 4.0 * _EPS * u1))
+        if stuck.any():
+            _fail(failure, failed, spiral[stuck], "precision")
+        kept_count += np.bincount(spiral[ok], minlength=n)
+        pending = 2 * np.bincount(spiral[split], minlength=n)
+        over = kept_count + pending > max_biarcs
+        if over.any():
+            _fail(failure, failed, np.flatnonzero(over), "segment_limit")
+        going = np.flatnonzero(split & ~failed[spiral])
+        spiral, lo, hi, at = spiral[going], u0[going], u1[going], at[going]
+        spiral = np.concatenate((spiral, spiral))
+        u0, u1 = np.concatenate((lo, at)), np.concatenate((at, hi))
     else:
         _fail(failure, failed, np.unique(spiral), "precision")
-    return Subdivision(kept=_ordered(kept, failed), failure=failure)
+    return Subdivision(kept=_ordered(levels, failed), failure=failure)
 
 
 def _fail(failure: list[str], failed: npt.NDArray[np.bool_], which: IntArray, why: str) -> None:
@@ -98,28 +100,37 @@ def _fail(failure: list[str], failed: npt.NDArray[np.bool_], which: IntArray, wh
             failure[i] = why
 
 
-def _ordered(kept: list[tuple[IntArray, Biarcs, Deviation]], failed: npt.NDArray[np.bool_]) -> Kept:
-    if not kept:
+def _ordered(
+    levels: list[tuple[IntArray, Biarcs, Deviation, npt.NDArray[np.bool_]]],
+    failed: npt.NDArray[np.bool_],
+) -> Kept:
+    """The kept pieces of spirals that did not fail, by spiral then parameter."""
+    if not levels:
         empty = np.zeros(0)
         return Kept(
             spiral=np.zeros(0, dtype=np.intp),
             biarcs=Biarcs(*([empty] * len(fields(Biarcs)))),
             deviation=Deviation(*([empty] * len(fields(Deviation)))),
         )
-    spiral = np.concatenate([s for s, _, _ in kept])
-    biarcs = _concat([b for _, b, _ in kept])
-    deviation = _concat([d for _, _, d in kept])
-    order = np.lexsort((biarcs.u0, spiral))
-    order = order[~failed[spiral[order]]]
-    return Kept(spiral=spiral[order], biarcs=_take(biarcs, order), deviation=_take(deviation, order))
+    spiral = np.concatenate([s for s, _, _, _ in levels])
+    ok = np.concatenate([o for _, _, _, o in levels])
+    u0 = np.concatenate([b.u0 for _, b, _, _ in levels])
+    keep = np.flatnonzero(ok & ~failed[spiral])
+    order = keep[np.lexsort((u0[keep], spiral[keep]))]
+    biarcs = _gather([b for _, b, _, _ in levels], order)
+    deviation = _gather([d for _, _, d, _ in levels], order)
+    return Kept(spiral=spiral[order], biarcs=biarcs, deviation=deviation)
 
 
 def _take(columns: _T, index: npt.NDArray[np.bool_] | IntArray) -> _T:
     return type(columns)(*(getattr(columns, f.name)[index] for f in fields(columns)))
 
 
-def _concat(parts: list[_T]) -> _T:
+def _gather(parts: list[_T], order: IntArray) -> _T:
+    """Rows ``order`` of the parts stacked end to end."""
     first = parts[0]
+    if len(parts) == 1:
+        return _take(first, order)
     return type(first)(
-        *(np.concatenate([getattr(p, f.name) for p in parts]) for f in fields(first))
+        *(np.concatenate([getattr(p, f.name) for p in parts])[order] for f in fields(first))
     )

@@ -93,8 +93,20 @@ class SegmentColumns:
 
     def rows(self, begin: int, end: int) -> SegmentColumns:
         """Rows ``begin:end`` as views (no copy)."""
+        s = slice(begin, end)
         return SegmentColumns(
-            **{name: getattr(self, name)[begin:end] for name in self.__slots__}  # type: ignore[attr-defined]
+            self.is_arc[s],
+            self.start[s],
+            self.end[s],
+            self.center[s],
+            self.radius[s],
+            self.start_angle_rad[s],
+            self.sweep_rad[s],
+            self.length[s],
+            self.u_start[s],
+            self.u_end[s],
+            self.max_deviation[s],
+            self.u_at_max_deviation[s],
         )
 
     def segment(self, i: int) -> Segment:
