@@ -30,8 +30,9 @@ RUN --mount=type=secret,id=ca \
     python3 --version
 
 # ---------------------------------------------------------------------------------------------
-# builder: a virtual environment with the pinned runtime dependencies, then the project.
-FROM base AS builder
+# deps: a virtual environment with the pinned runtime dependencies (requirements/runtime.lock).
+# Its layer only changes with the lock file, so a code change ships a small layer, not numpy.
+FROM base AS deps
 RUN --mount=type=secret,id=ca \
     set -eu; \
     export DEBIAN_FRONTEND=noninteractive; \
@@ -45,15 +46,24 @@ ENV PATH=/opt/venv/bin:$PATH \
     PIP_DISABLE_PIP_VERSION_CHECK=1 \
     PIP_DEFAULT_TIMEOUT=120 \
     PIP_PROGRESS_BAR=off
-WORKDIR /src
-# Dependencies first: this layer is reused until requirements/runtime.lock changes.
-COPY requirements/runtime.lock requirements/runtime.lock
+COPY requirements/runtime.lock /tmp/runtime.lock
 RUN --mount=type=secret,id=ca \
     set -eu; \
     if [ -s /run/secrets/ca ]; then \
         export PIP_CERT=/run/secrets/ca REQUESTS_CA_BUNDLE=/run/secrets/ca SSL_CERT_FILE=/run/secrets/ca; \
     fi; \
-    pip install --only-binary=:all: -r requirements/runtime.lock
+    pip install --only-binary=:all: -r /tmp/runtime.lock; \
+    rm /tmp/runtime.lock; \
+    pip uninstall -y -q pip; \
+    python -m compileall -q /opt/venv; \
+    site="$(python -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')"; \
+    echo /opt/app >"$site/arcspline-app.pth"
+
+# ---------------------------------------------------------------------------------------------
+# builder: the project itself (`pip install --no-deps .`), into /opt/app, which the venv's
+# arcspline-app.pth puts on sys.path.
+FROM deps AS builder
+WORKDIR /src
 COPY pyproject.toml README.md* ./
 COPY service ./service
 RUN --mount=type=secret,id=ca \
@@ -61,10 +71,10 @@ RUN --mount=type=secret,id=ca \
     if [ -s /run/secrets/ca ]; then \
         export PIP_CERT=/run/secrets/ca REQUESTS_CA_BUNDLE=/run/secrets/ca SSL_CERT_FILE=/run/secrets/ca; \
     fi; \
-    pip install --no-deps . ; \
-    pip uninstall -y -q pip; \
-    python -m compileall -q /opt/venv; \
-    python -c "import service, numpy, fastapi, uvicorn"
+    python3 -m venv /opt/build; \
+    /opt/build/bin/pip install --no-deps --target /opt/app . ; \
+    python -m compileall -q /opt/app; \
+    cd / && python -c "import service.__main__, service.api.app, numpy, fastapi, uvicorn"
 
 # ---------------------------------------------------------------------------------------------
 # runtime: python3 + the venv, unprivileged, read-only-root friendly.
@@ -73,8 +83,11 @@ RUN set -eu; \
     groupadd --gid 10001 arcspline; \
     useradd --uid 10001 --gid arcspline --no-create-home --no-log-init \
         --home-dir /nonexistent --shell /usr/sbin/nologin arcspline
-COPY --from=builder /opt/venv /opt/venv
+# The venv (dependencies, no pip), then the project: two layers, the big one cached.
+COPY --from=deps /opt/venv /opt/venv
+COPY --from=builder /opt/app /opt/app
 # PYTHONSAFEPATH: `python -m service` imports the installed package, never the working dir.
+# PATH: the venv's python (its .pth adds /opt/app).
 ENV PATH=/opt/venv/bin:$PATH \
     PYTHONSAFEPATH=1
 WORKDIR /
