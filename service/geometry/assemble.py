@@ -37,14 +37,12 @@ class Frames:
 
     @classmethod
     def of(cls, spirals: list[Spiral]) -> Frames:
-        # One pass over the spirals, one array: (B0, T0, a, σ, B3) per row.
+        # One pass over the spirals, one array: (B0, T0, a, σ) per row; B3 as stored.
         table = np.array(
-            [
-                (*s.start, *s.start_tangent, s.a, s.turn_direction, *s.control_points[3])
-                for s in spirals
-            ],
+            [(*s.start, *s.start_tangent, s.a, s.turn_direction) for s in spirals],
             dtype=np.float64,
-        ).reshape(-1, 8)
+        ).reshape(-1, 6)
+        end_point = np.array([s.control_points[3] for s in spirals], dtype=np.float64)
         return cls(
             origin=table[:, 0:2],
             scale=table[:, 4],
@@ -52,7 +50,7 @@ class Frames:
             sin_phi=table[:, 3],
             phi_rad=np.arctan2(table[:, 3], table[:, 2]),
             mirror=table[:, 5],
-            end_point=table[:, 6:8],
+            end_point=end_point.reshape(-1, 2),
         )
 
     def point(self, i: IntArray, x: FloatArray, y: FloatArray) -> FloatArray:
