@@ -353,7 +353,7 @@ def point_line_distance(points: Array, start: Array, end: Array) -> Array:
 
 
 def _golden_max(
-    f: Callable[[Array], Array], lo: Array, hi: Array, iterations: int = 40
+    f: Callable[[Array], Array], lo: Array, hi: Array, iterations: int = 32
 ) -> tuple[Array, Array]:
     """Element-wise golden-section search for the maximum of ``f`` on ``[lo, hi]``."""
     r = (math.sqrt(5.0) - 1.0) / 2.0
@@ -400,12 +400,14 @@ class Deviation:
         return max(self.spiral_to_spline, self.global_spiral_to_spline, self.spline_to_spiral)
 
 
-def measure(cp: Array, segments: Sequence[Any], samples: int = 30_000) -> Deviation:
+def measure(
+    cp: Array, segments: Sequence[Any], samples: int = 30_000, pairs: int = 400_000
+) -> Deviation:
     """Measure the two-sided distance between ``Q`` (control points ``cp``) and ``segments``.
 
     ``samples`` is the budget of spiral points for the per-segment pass (at least 17 per
     segment); the spline side takes an eighth of it (at least 17 per segment), the global
-    pass about 400 000 point–segment pairs. Every sampled
+    pass about ``pairs`` point–segment pairs (at least 257 points). Every sampled
     maximum is refined by golden-section search, so the result is exact to ~1e-10 relative.
     """
     cp64 = np.asarray(cp, dtype=np.float64)
@@ -441,7 +443,7 @@ def measure(cp: Array, segments: Sequence[Any], samples: int = 30_000) -> Deviat
     k = int(np.argmax(win_dev))
 
     # Spiral side, globally: an even sample (plus every reported break) against all.
-    g = int(np.clip(400_000 // max(n, 1), 257, 4_097))
+    g = int(np.clip(pairs // max(n, 1), 257, 4_097))
     ug = np.unique(np.concatenate([curve_grid(cp64, g), us, ue]))
     ug = ug[(ug >= 0.0) & (ug <= 1.0)]
     dg = np.empty(len(ug), dtype=LD)
