@@ -22,6 +22,9 @@ from .types import ArcSpline, FloatArray, SegmentColumns, SplineStats
 #: tangent then turns by at most half of this at each end, far below anything measurable.
 FLAT_SWEEP_RAD = 1e-10
 
+#: Index of every row (a view, no gather), for frames already taken per row.
+ALL = slice(None)
+
 
 @dataclass(frozen=True, slots=True)
 class Frames:
@@ -53,17 +56,29 @@ class Frames:
             end_point=end_point.reshape(-1, 2),
         )
 
-    def point(self, i: IntArray, x: FloatArray, y: FloatArray) -> FloatArray:
+    def take(self, i: IntArray) -> Frames:
+        """The frames of spirals ``i``, one row each: gathered once, then indexed by ``ALL``."""
+        return Frames(
+            origin=self.origin[i],
+            scale=self.scale[i],
+            cos_phi=self.cos_phi[i],
+            sin_phi=self.sin_phi[i],
+            phi_rad=self.phi_rad[i],
+            mirror=self.mirror[i],
+            end_point=self.end_point[i],
+        )
+
+    def point(self, i: IntArray | slice, x: FloatArray, y: FloatArray) -> FloatArray:
         """World points of canonical points ``(x, y)`` of spirals ``i``."""
         return self.origin[i] + self.vector(i, x, y)
 
-    def vector(self, i: IntArray, x: FloatArray, y: FloatArray) -> FloatArray:
+    def vector(self, i: IntArray | slice, x: FloatArray, y: FloatArray) -> FloatArray:
         """World vectors of canonical vectors ``(x, y)`` of spirals ``i``."""
         s, c, sn = self.scale[i], self.cos_phi[i], self.sin_phi[i]
         y = self.mirror[i] * y
         return np.stack([s * (c * x - sn * y), s * (sn * x + c * y)], axis=-1)
 
-    def angle(self, i: IntArray, angle_rad: FloatArray) -> FloatArray:
+    def angle(self, i: IntArray | slice, angle_rad: FloatArray) -> FloatArray:
         """World polar angles of canonical angles, in ``(−π, π]``."""
         world = self.phi_rad[i] + self.mirror[i] * angle_rad
         return np.asarray(np.arctan2(np.sin(world), np.cos(world)))
@@ -73,13 +88,14 @@ def segment_columns(kept: Kept, k: FloatArray, m: FloatArray, frames: Frames) ->
     """Two rows per kept biarc (arc 0, then arc 1), in the order of ``kept``."""
     b, d, i = kept.biarcs, kept.deviation, kept.spiral
     kk, mm = k[i], m[i]
-    a0 = frames.point(i, *canonical.point(kk, mm, b.u0))
-    a1 = frames.point(i, *canonical.point(kk, mm, b.u1))
-    join = a0 + frames.vector(i, b.join_dx, b.join_dy)
+    rows = frames.take(i)  # per-row frames, gathered once for all the mappings below
+    a0 = rows.point(ALL, *canonical.point(kk, mm, b.u0))
+    a1 = rows.point(ALL, *canonical.point(kk, mm, b.u1))
+    join = a0 + rows.vector(ALL, b.join_dx, b.join_dy)
     # Pin the spiral's own end points: u = 0 maps to B0 exactly, u = 1 to the stored B3.
     at_end = b.u1 == 1.0
-    a1[at_end] = frames.end_point[i[at_end]]
-    scale = frames.scale[i]
+    a1[at_end] = rows.end_point[at_end]
+    scale = rows.scale
 
     def interleave(first: npt.NDArray[np.generic], second: npt.NDArray[np.generic]) -> FloatArray:
         out = np.empty((2 * first.shape[0], *first.shape[1:]), dtype=np.result_type(first))
@@ -89,18 +105,21 @@ def segment_columns(kept: Kept, k: FloatArray, m: FloatArray, frames: Frames) ->
     def normal(phi: FloatArray) -> tuple[FloatArray, FloatArray]:
         return -np.sin(phi), np.cos(phi)
 
-    centre0 = a0 + frames.vector(i, *(b.radius0 * n for n in normal(b.phi0_rad)))
-    centre1 = a1 + frames.vector(i, *(b.radius1 * n for n in normal(b.phi1_rad)))
+    centre0 = a0 + rows.vector(ALL, *(b.radius0 * n for n in normal(b.phi0_rad)))
+    centre1 = a1 + rows.vector(ALL, *(b.radius1 * n for n in normal(b.phi1_rad)))
     sweep = interleave(b.alpha_rad, b.beta_rad)
-    mirror = interleave(frames.mirror[i], frames.mirror[i])
+    mirror = interleave(rows.mirror, rows.mirror)
     radius = interleave(scale * b.radius0, scale * b.radius1)
     start = interleave(a0, join)
     end = interleave(join, a1)
     is_arc = sweep > FLAT_SWEEP_RAD
-    length = np.where(is_arc, radius * sweep, np.hypot(*(end - start).T))
+    length = radius * sweep
+    if not is_arc.all():
+        chord = end - start
+        length = np.where(is_arc, length, np.hypot(chord[:, 0], chord[:, 1]))
     centre = np.where(is_arc[:, None], interleave(centre0, centre1), 0.5 * (start + end))
     start_angle = interleave(
-        frames.angle(i, b.phi0_rad - 0.5 * np.pi), frames.angle(i, b.chord_rad - 0.5 * np.pi)
+        rows.angle(ALL, b.phi0_rad - 0.5 * np.pi), rows.angle(ALL, b.chord_rad - 0.5 * np.pi)
     )
     max_dev = interleave(scale * d.arc0, scale * d.arc1)
     if not is_arc.all():
@@ -254,6 +273,6 @@ def spiral_lengths(spirals: list[Spiral]) -> FloatArray:
     k, m = canonical.coefficients(theta)
     u = (np.arange(4)[:, None] + 0.5 + 0.5 * _NODES[None, :]).ravel() / 4.0
     w2 = (u * u)[None, :]
-    speed = 3.0 * np.hypot(1.0 + k[:, None] * w2, m[:, None] * w2)
+    speed = 3.0 * canonical.norm(1.0 + k[:, None] * w2, m[:, None] * w2)
     weights = np.tile(_WEIGHTS, 4) / 8.0
     return np.asarray(scale * (speed @ weights))

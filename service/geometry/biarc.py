@@ -22,6 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from . import canonical
 from .types import FloatArray
 
 
@@ -66,7 +67,7 @@ def incentre_biarcs(k: FloatArray, m: FloatArray, u0: FloatArray, u1: FloatArray
     phi0 = np.arctan2(y0, x0)
     chord_dir = phi0 + alpha
     # Q(u1) − Q(u0) = h·(3 + k·σ, m·σ) (canonical.offset).
-    length = np.hypot(h * (3.0 + k * sigma), h * m * sigma)
+    length = canonical.norm(h * (3.0 + k * sigma), h * m * sigma)
     half_a, half_b = 0.5 * alpha, 0.5 * beta
     sin_half_a, sin_half_b = np.sin(half_a), np.sin(half_b)
     chord_over_s = length / np.sin(half_a + half_b)

@@ -41,6 +41,14 @@ def offset(k: Float, m: Float, u_from: Float, u_to: Float) -> tuple[FloatArray, 
     return np.asarray(h * (3.0 + k * sigma)), np.asarray(h * m * sigma)
 
 
+def norm(x: FloatArray, y: FloatArray) -> FloatArray:
+    """``‖(x, y)‖`` as ``sqrt(x² + y²)``: several times faster than ``np.hypot`` on large
+    arrays and as accurate to within an ulp. Safe here because the canonical frame (and the
+    world coordinates the core accepts) stay far from squares that overflow or underflow."""
+    result: FloatArray = np.sqrt(x * x + y * y)
+    return result
+
+
 def direction_rad(k: Float, m: Float, w: Float) -> FloatArray:
     """Polar angle of ``(1 + k·w, m·w)``; with ``w = u²`` the tangent direction at ``u``."""
     return np.asarray(np.arctan2(m * w, 1.0 + k * w))

@@ -103,12 +103,12 @@ def max_deviation(k: FloatArray, m: FloatArray, b: Biarcs, t: FloatArray) -> Dev
             root = found
         else:
             root[which] = found
-    side = _radial_deviation_n(kk, mm, ui, nx, ny, r, root)
+    side = _radial_deviation(kk, mm, ui, nx, ny, r, root)
     if not every:
         side = np.where(bracketed, side, 0.0)
 
     tx, ty = canonical.offset(k, m, b.u0, t)
-    at_t = np.hypot(tx - b.join_dx, ty - b.join_dy)
+    at_t = canonical.norm(tx - b.join_dx, ty - b.join_dy)
     arc0, arc1 = side[:n], side[n:]
     u_arc0 = np.where(arc0 > at_t, root[:n], t)
     u_arc1 = np.where(arc1 > at_t, root[n:], t)
@@ -126,22 +126,6 @@ def max_deviation(k: FloatArray, m: FloatArray, b: Biarcs, t: FloatArray) -> Dev
 
 
 def _radial_deviation(
-    k: FloatArray, m: FloatArray, ui: FloatArray, phi: FloatArray, r: FloatArray, u: FloatArray
-) -> FloatArray:
-    """``|‖Q(u) − C‖ − r|`` for the circle tangent at ``Q(ui)`` with direction ``phi``.
-
-    With ``P = Q(u) − Q(ui)`` and ``C = Q(ui) + r·N``:
-    ``‖Q − C‖ − r = (‖P‖² − 2r·P·N) / (‖P − r·N‖ + r)``, free of the cancellation between
-    two nearly equal large numbers that the direct form suffers for large radii.
-    """
-    px, py = canonical.offset(k, m, ui, u)
-    nx, ny = -np.sin(phi), np.cos(phi)
-    numerator = px * px + py * py - 2.0 * r * (px * nx + py * ny)
-    result: FloatArray = np.abs(numerator) / (np.hypot(px - r * nx, py - r * ny) + r)
-    return result
-
-
-def _radial_deviation_n(
     k: FloatArray,
     m: FloatArray,
     ui: FloatArray,
@@ -150,9 +134,14 @@ def _radial_deviation_n(
     r: FloatArray,
     u: FloatArray,
 ) -> FloatArray:
-    """:func:`_radial_deviation` with the unit normal ``(nx, ny) = (−sin φ, cos φ)`` given."""
+    """``|‖Q(u) − C‖ − r|`` for the circle tangent at ``Q(ui)`` with unit normal ``(nx, ny)``.
+
+    With ``P = Q(u) − Q(ui)`` and ``C = Q(ui) + r·N``:
+    ``‖Q − C‖ − r = (‖P‖² − 2r·P·N) / (‖P − r·N‖ + r)``, free of the cancellation between
+    two nearly equal large numbers that the direct form suffers for large radii.
+    """
     px, py = canonical.offset(k, m, ui, u)
     rx, ry = r * nx, r * ny
     numerator = px * px + py * py - 2.0 * (px * rx + py * ry)
-    result: FloatArray = np.abs(numerator) / (np.hypot(px - rx, py - ry) + r)
+    result: FloatArray = np.abs(numerator) / (canonical.norm(px - rx, py - ry) + r)
     return result
