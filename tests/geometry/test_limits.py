@@ -119,7 +119,7 @@ def test_just_below_the_floor_is_refused_just_above_works(spiral: Spiral) -> Non
     assert "tolerance" in str(err)
     above = floor * (1 + 1e-6)
     spline = approximate(spiral, above)
-    verdict = oracle.check(spiral.control_points, spline, above, samples=20_000)
+    verdict = oracle.check(spiral.control_points, spline, above, samples=10_000)
     assert not verdict.violations, verdict.describe()
 
 

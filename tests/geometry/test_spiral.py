@@ -155,7 +155,8 @@ def test_rejects_a_wrong_leg_ratio_naming_1_2_cos_theta_and_the_amount() -> None
 def test_rejects_a_turn_outside_0_to_90_degrees_naming_the_angle(turn_deg: float) -> None:
     th = math.radians(turn_deg)
     a = 1.0
-    b = abs(1.2 * math.cos(th)) or 1.0  # a length that is not itself the failing condition
+    # A leg ratio of the paper's form where there is one, so that the angle is what fails.
+    b = abs(1.2 * math.cos(th)) if abs(math.cos(th)) > 1e-3 else 1.0
     cp = np.array([[0, 0], [a, 0], [2 * a, 0], [2 * a + b * math.cos(th), b * math.sin(th)]])
     with pytest.raises(GeometryError) as info:
         Spiral.from_control_points(cp)
