@@ -137,7 +137,7 @@ def _screen(
     return np.where(b.ok, worst, np.inf)
 
 
-def _verify(k: float, m: float, u0: float, b: _Biarcs) -> tuple[FloatArray, ...]:
+def _verify(k: float, m: float, u0: float, b: _Biarcs, tol: float) -> tuple[FloatArray, ...]:
     """Exact deviations of both arcs of each candidate: ``(dev0, u0_at, dev1, u1_at)``."""
     n = b.u1.shape[0]
     kk, mm = np.full(2 * n, k), np.full(2 * n, m)
@@ -154,6 +154,7 @@ def _verify(k: float, m: float, u0: float, b: _Biarcs) -> tuple[FloatArray, ...]
         np.concatenate([b.gy, by]),
         np.concatenate([np.full(n, u0), b.split]),
         np.concatenate([b.split, b.u1]),
+        tol,
     )
     value = np.where(np.concatenate([b.ok, b.ok]), d.value, np.inf)
     return value[:n], d.u[:n], value[n:], d.u[n:]
@@ -237,7 +238,7 @@ def _search(
     flat = np.flatnonzero(fits.ravel())
     order = flat[np.lexsort((dev.ravel()[flat], -b.u1[flat]))][:VERIFY]
     picked = _Biarcs(*(np.asarray(getattr(b, f))[order] for f in _Biarcs.__slots__))
-    d0, w0, d1, w1 = _verify(k, m, u0, picked)
+    d0, w0, d1, w1 = _verify(k, m, u0, picked, tol)
     good = np.flatnonzero((d0 <= tol) & (d1 <= tol))
     if good.size == 0:
         return None

@@ -57,6 +57,11 @@ from .types import BoolArray, FloatArray
 
 Float = float | FloatArray
 
+#: An arc's centre is stored with an error of about ``eps·radius``; this many ulps of the radius
+#: must fit in the tolerance (error ≤ 1e-4 of it).
+CENTRE_ULPS = 1e4
+_EPS = float(np.finfo(np.float64).eps)
+
 #: Root levels of the cascade: derivative orders 4, 3, 2, 1, 0 of the quintic ``h``.
 _LEVELS = (4, 3, 2, 1, 0)
 
@@ -134,9 +139,16 @@ def arc_deviation(
     ey: FloatArray,
     s_lo: FloatArray,
     s_hi: FloatArray,
+    tolerance: float,
 ) -> ArcDeviation:
-    """Exact deviation of arcs from ``J = (jx, jy)`` to ``E = (ex, ey)`` over ``[s_lo, s_hi]``."""
+    """Exact deviation of arcs from ``J = (jx, jy)`` to ``E = (ex, ey)`` over ``[s_lo, s_hi]``.
+
+    Arcs so flat that their world centre (``radius/tolerance`` beyond ``1/(CENTRE_ULPS·eps)``)
+    cannot be written in double precision to a small fraction of the tolerance are refused
+    (``inf``): the numbers handed out would not carry the guarantee.
+    """
     valid = _is_graph(k, m, jx, jy, phi, kappa, ex, ey, s_lo, s_hi)
+    valid &= (kappa == 0.0) | (np.abs(kappa) * tolerance >= CENTRE_ULPS * _EPS)
     nx, ny = -np.sin(phi), np.cos(phi)
     coeffs = np.zeros((jx.shape[0], 6))
     coeffs[:, 0] = -kappa * jx - nx

@@ -149,6 +149,7 @@ def best_triarc(
         t.y[0, 1:],
         t.s[0, :3],
         t.s[0, 1:],
+        tol,
     )
     if not np.all(d.value <= tol):
         return None
