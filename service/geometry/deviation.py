@@ -94,9 +94,9 @@ def max_deviation(k: FloatArray, m: FloatArray, b: Biarcs, t: FloatArray) -> Dev
         # One step of false position: q can be strongly curved over a side (it is where the
         # side ends at u = 1), and the secant of the sub-bracket is a far better start.
         q_s = (((w_a4 * secant + w_c3) * secant + w_c2) * secant + w_c1) * secant + w_c0
-        left = (q_s < 0.0) == (w_q_lo < 0.0)  # the root lies right of the secant point
-        near, q_near = np.where(left, secant, w_lo), np.where(left, q_s, w_q_lo)
-        far, q_far = np.where(left, w_hi, secant), np.where(left, w_q_hi, q_s)
+        right = (q_s < 0.0) == (w_q_lo < 0.0)  # the root lies right of the secant point
+        near, q_near = np.where(right, secant, w_lo), np.where(right, q_s, w_q_lo)
+        far, q_far = np.where(right, w_hi, secant), np.where(right, w_q_hi, q_s)
         secant = near + (far - near) * q_near / (q_near - q_far)
         found = polynomial_root((w_a4, w_c3, w_c2, w_c1, w_c0), w_lo, w_hi, secant)
         if every:
