@@ -346,11 +346,12 @@ def chord_deviation(
 
 
 class ArcWords(NamedTuple):
-    """One arc block as a controller reads it, in units in the last place (integers).
+    """One arc block as a controller reads it.
 
-    ``offset`` is ``(I, J)``, the centre minus the rounded start; ``radius`` is the signed
-    ``R`` word, or ``None`` for the ``I``/``J`` form. ``centre``, ``r_start`` and ``r_end``
-    are what the controller computes from the words (world units, floats).
+    ``offset`` is ``(I, J)``, the centre minus the rounded start, and ``radius`` the signed
+    ``R`` word, both in units in the last place (integers); exactly one of them is set.
+    ``centre``, ``r_start``, ``r_end`` and ``sweep_rad`` are what a controller computes from
+    the words (world units).
     """
 
     ccw: bool
@@ -362,109 +363,227 @@ class ArcWords(NamedTuple):
     sweep_rad: float
 
 
-def _controller_sweep(start: FloatArray, end: FloatArray, centre: FloatArray, ccw: bool) -> float:
-    """The sweep a controller cuts from ``start`` to ``end`` about ``centre`` (in ``(0, 2π]``
-    of the given sense, signed): an end angle equal to the start angle is a full circle."""
-    a = math.atan2(start[1] - centre[1], start[0] - centre[0])
-    b = math.atan2(end[1] - centre[1], end[0] - centre[0])
-    if ccw:
-        return b - a if b > a else b - a + 2.0 * math.pi
-    return b - a if b < a else b - a - 2.0 * math.pi
+class _Arcs(NamedTuple):
+    """Arcs to encode, one row each: rounded ends (lattice integers), true centre, radius and
+    signed sweep."""
+
+    start: IntArray
+    end: IntArray
+    centre: FloatArray
+    radius: FloatArray
+    sweep_rad: FloatArray
+
+
+class _Encoded(NamedTuple):
+    """Encoded arcs, one row each; ``ok`` is false where the form does not apply."""
+
+    ok: npt.NDArray[np.bool_]
+    words: IntArray  # (n, 2) I, J or (n, 1) R
+    centre: FloatArray
+    r_start: FloatArray
+    r_end: FloatArray
+    sweep_rad: FloatArray
+
+
+#: Points of each arc at which fits are compared (ends included).
+_FIT_POINTS = 9
+_GOLDEN = (math.sqrt(5.0) - 1.0) / 2.0
+
+
+def _controller_sweeps(
+    start: FloatArray, end: FloatArray, centre: FloatArray, ccw: npt.NDArray[np.bool_]
+) -> FloatArray:
+    """The sweep a controller cuts from ``start`` to ``end`` about ``centre``, signed, of
+    magnitude in ``(0, 2π]``: an end angle not strictly past the start is a full turn."""
+    a = np.arctan2(start[:, 1] - centre[:, 1], start[:, 0] - centre[:, 0])
+    b = np.arctan2(end[:, 1] - centre[:, 1], end[:, 0] - centre[:, 0])
+    turn = 2.0 * np.pi
+    up = np.where(b > a, b - a, b - a + turn)
+    down = np.where(b < a, b - a, b - a - turn)
+    return np.asarray(np.where(ccw, up, down), dtype=np.float64)
+
+
+def _fit_points(arcs: _Arcs, start: FloatArray) -> FloatArray:
+    """Points of each true arc, ``(n, _FIT_POINTS, 2)``, from the rounded start's angle."""
+    c = arcs.centre
+    a0 = np.arctan2(start[:, 1] - c[:, 1], start[:, 0] - c[:, 0])
+    angle = a0[:, None] + arcs.sweep_rad[:, None] * np.linspace(0.0, 1.0, _FIT_POINTS)
+    ring = np.stack([np.cos(angle), np.sin(angle)], axis=-1)
+    return np.asarray(c[:, None, :] + arcs.radius[:, None, None] * ring, dtype=np.float64)
+
+
+def _gap(
+    points: FloatArray, centre: FloatArray, r_start: FloatArray, r_end: FloatArray
+) -> FloatArray:
+    """Largest distance from ``points`` (``(n, k, 2)``) to the circles of radius ``r_start``
+    and ``r_end`` about ``centre`` (``(n, …, 2)``, broadcast)."""
+    rho = np.hypot(points[..., 0] - centre[..., 0:1], points[..., 1] - centre[..., 1:2])
+    far = np.maximum(np.abs(rho - r_start[..., None]), np.abs(rho - r_end[..., None]))
+    return np.asarray(far.max(axis=-1), dtype=np.float64)
+
+
+def _best_fit_centres(arcs: _Arcs, decimals: int) -> FloatArray:
+    """For each arc, the centre on the perpendicular bisector of the rounded ends whose circle
+    is nearest the true arc (minimax over :data:`_FIT_POINTS` points, by golden section).
+
+    The search starts from the bisector point nearest the true centre; the window is wide
+    where the shape barely depends on the centre (a flat arc) and narrow near half circles.
+    """
+    scale = 10.0**decimals
+    s, e = arcs.start / scale, arcs.end / scale
+    mid = 0.5 * (s + e)
+    chord = e - s
+    half = 0.5 * np.hypot(chord[:, 0], chord[:, 1])
+    normal = np.stack([-chord[:, 1], chord[:, 0]], axis=1) / (2.0 * half[:, None])
+    t0 = np.einsum("nj,nj->n", arcs.centre - mid, normal)
+    bulge = np.maximum(1.0 - np.cos(0.5 * np.abs(arcs.sweep_rad)), 1e-300)
+    width = np.clip(4.0 / scale / bulge, 1.0 / scale, 0.5 * arcs.radius)
+    points = _fit_points(arcs, s)
+
+    def misfit(t: FloatArray) -> FloatArray:
+        centre = mid + t[:, None] * normal
+        r = np.hypot(t, half)
+        return _gap(points, centre, r, r)
+
+    lo, hi = t0 - width, t0 + width
+    x1, x2 = hi - _GOLDEN * (hi - lo), lo + _GOLDEN * (hi - lo)
+    f1, f2 = misfit(x1), misfit(x2)
+    for _ in range(48):
+        left = f1 <= f2
+        lo, hi = np.where(left, lo, x1), np.where(left, x2, hi)
+        new = np.where(left, hi - _GOLDEN * (hi - lo), lo + _GOLDEN * (hi - lo))
+        fn = misfit(new)
+        x1, x2 = np.where(left, new, x2), np.where(left, x1, new)
+        f1, f2 = np.where(left, fn, f2), np.where(left, f1, fn)
+    best = np.where(f1 <= f2, x1, x2)
+    # Keep the nearest point unless the fit is clearly better: a flat arc fits many circles
+    # about equally, and the one nearest the true centre keeps the true radius.
+    better = misfit(best) < misfit(t0) - 0.05 / scale
+    best = np.where(better, best, t0)
+    return np.asarray(mid + best[:, None] * normal, dtype=np.float64)
+
+
+def _encode_ij(arcs: _Arcs, ideal: FloatArray, decimals: int) -> _Encoded:
+    """``I``/``J``: of the lattice points within one unit of the ideal centre, those whose
+    start and end radii agree within ``q·min(1, √2·sin(|sweep|/2))`` (one always does), and
+    of those the one whose circle is nearest the true arc."""
+    scale = 10.0**decimals
+    s, e = arcs.start / scale, arcs.end / scale
+    base = np.rint((ideal - s) * scale)
+    steps = np.array([(i, j) for i in (-1, 0, 1) for j in (-1, 0, 1)], dtype=np.float64)
+    offset = base[:, None, :] + steps[None, :, :]  # (n, 9, 2), integers held exactly
+    centre = s[:, None, :] + offset / scale
+    near = np.hypot(*np.moveaxis(centre - ideal[:, None, :], -1, 0)) <= 1.0 / scale
+    d = (arcs.end - arcs.start).astype(np.float64)[:, None, :]
+    r_s = np.hypot(offset[..., 0], offset[..., 1])
+    r_e = np.hypot(offset[..., 0] - d[..., 0], offset[..., 1] - d[..., 1])
+    # r_s − r_e = (r_s² − r_e²) / (r_s + r_e) = (2·off − D)·D / (r_s + r_e), in units.
+    mismatch = np.abs(np.sum((2.0 * offset - d) * d, axis=-1)) / np.maximum(r_s + r_e, 1.0)
+    bound = np.minimum(1.0, math.sqrt(2.0) * np.sin(0.5 * np.abs(arcs.sweep_rad)))
+    agree = near & (mismatch <= bound[:, None] * (1.0 + 1e-9))
+    allowed = np.where(np.any(agree, axis=1)[:, None], agree, near)
+    points = _fit_points(arcs, s)
+    gap = _gap(points[:, None, :, :], centre, r_s / scale, r_e / scale)
+    pick = np.argmin(np.where(allowed, gap, np.inf), axis=1)
+    rows = np.arange(len(pick))
+    chosen = centre[rows, pick]
+    ccw = arcs.sweep_rad > 0.0
+    return _Encoded(
+        ok=np.ones(len(pick), dtype=np.bool_),
+        words=offset[rows, pick].astype(np.int64),
+        centre=chosen,
+        r_start=r_s[rows, pick] / scale,
+        r_end=r_e[rows, pick] / scale,
+        sweep_rad=_controller_sweeps(s, e, chosen, ccw),
+    )
+
+
+def _encode_r(arcs: _Arcs, ideal: FloatArray, decimals: int) -> _Encoded:
+    """``R``: the ideal circle's radius, rounded, negative past a half circle, with the
+    centre a controller derives from it (LinuxCNC's ``arc_data_r``). Not used within
+    :data:`HALF_CIRCLE_MARGIN_DEG` of a half circle, nor where the rounded radius no longer
+    spans the chord."""
+    scale = 10.0**decimals
+    s, e = arcs.start / scale, arcs.end / scale
+    major = np.abs(arcs.sweep_rad) > np.pi
+    r_units = np.rint(np.hypot(*(ideal - s).T) * scale)
+    abs_r = r_units / scale
+    chord = e - s
+    half = 0.5 * np.hypot(chord[:, 0], chord[:, 1])
+    near_half = np.abs(np.degrees(np.abs(arcs.sweep_rad)) - 180.0) < HALF_CIRCLE_MARGIN_DEG
+    ok = ~near_half & (r_units > 0) & (half < abs_r * (1.0 - 1e-9))
+    ccw = arcs.sweep_rad > 0.0
+    # Left of the chord for a minor anticlockwise arc; a major arc takes the other side.
+    side = np.where(ccw != major, 1.0, -1.0)
+    normal = side[:, None] * np.stack([-chord[:, 1], chord[:, 0]], axis=1) / (2.0 * half[:, None])
+    offset = np.sqrt(np.maximum(abs_r**2 - half**2, 0.0))
+    centre = 0.5 * (s + e) + offset[:, None] * normal
+    return _Encoded(
+        ok=ok,
+        words=np.where(major, -r_units, r_units).astype(np.int64)[:, None],
+        centre=centre,
+        r_start=abs_r,
+        r_end=abs_r,
+        sweep_rad=_controller_sweeps(s, e, centre, ccw),
+    )
+
+
+def _encode(arcs: _Arcs, decimals: int, arc_format: ArcFormat) -> list[_Encoded]:
+    """The forms to try for each arc, best first: ``R`` (if asked for), then ``I``/``J``."""
+    ideal = _best_fit_centres(arcs, decimals)
+    forms = [_encode_ij(arcs, ideal, decimals)]
+    if arc_format == "r":
+        forms.insert(0, _encode_r(arcs, ideal, decimals))
+    for form in forms:
+        # A far centre (a nearly straight arc) may not be written; the chord is tried instead.
+        form.ok[np.any(np.abs(form.words) >= MAX_ARC_WORD * 10.0**decimals, axis=1)] = False
+    return forms
+
+
+def _words(form: _Encoded, i: int, ccw: bool) -> ArcWords:
+    w = form.words[i]
+    return ArcWords(
+        ccw=ccw,
+        offset=(int(w[0]), int(w[1])) if len(w) == 2 else None,
+        radius=int(w[0]) if len(w) == 1 else None,
+        centre=(float(form.centre[i, 0]), float(form.centre[i, 1])),
+        r_start=float(form.r_start[i]),
+        r_end=float(form.r_end[i]),
+        sweep_rad=float(form.sweep_rad[i]),
+    )
 
 
 def encode_arc(
     start: tuple[int, int],
     end: tuple[int, int],
     centre: Sequence[float],
+    radius: float,
     sweep_rad: float,
     decimals: int,
     arc_format: ArcFormat = "ij",
 ) -> ArcWords:
     """The words of one arc from the rounded ``start`` to the rounded ``end`` (lattice
-    integers) that best reproduce the arc about ``centre`` turning by ``sweep_rad``.
+    integers: units in the last place) that best reproduce the arc about ``centre`` of
+    ``radius`` turning by ``sweep_rad`` (signed, anticlockwise positive).
 
-    ``I``/``J``: the centre is the lattice point within one unit of the bisector point nearest
-    ``centre`` whose start and end radii agree best (ties: the nearer). ``R`` (when
-    ``arc_format`` is ``"r"`` and the sweep is at least :data:`HALF_CIRCLE_MARGIN_DEG` away
-    from 180°): the rounded radius, negative for sweeps beyond 180°, with the centre a
-    controller derives from it. ``start`` and ``end`` must differ.
+    The ideal centre is the point of the rounded ends' perpendicular bisector whose circle
+    is nearest the true arc. ``I``/``J``: a lattice point within one unit of it, with start
+    and end radii within ``q·min(1, √2·sin(|sweep|/2))`` of each other. ``R`` (when
+    ``arc_format`` is ``"r"``): the ideal radius, rounded, negative past a half circle; not
+    within :data:`HALF_CIRCLE_MARGIN_DEG` of one, where ``I``/``J`` is returned instead.
     """
-    if start == end:
+    if tuple(start) == tuple(end):
         raise ValueError("an arc needs distinct end points")
-    scale = 10**decimals
-    s = np.array(start, dtype=np.float64) / scale
-    e = np.array(end, dtype=np.float64) / scale
-    c = np.asarray(centre, dtype=np.float64)
-    ccw = sweep_rad > 0.0
-    radius = float(np.hypot(*(c - s)))
-    near_half = abs(abs(math.degrees(sweep_rad)) - 180.0) < HALF_CIRCLE_MARGIN_DEG
-    if arc_format == "r" and not near_half:
-        words = _r_words(s, e, radius, sweep_rad, decimals)
-        if words is not None:
-            return words
-    dx, dy = end[0] - start[0], end[1] - start[1]
-    mid = 0.5 * (s + e)
-    normal = np.array([-dy, dx], dtype=np.float64) / math.hypot(dx, dy)
-    foot = mid + float((c - mid) @ normal) * normal
-    base = np.rint((foot - s) * scale)
-    best: tuple[float, float, int, int] | None = None
-    for di in (-1, 0, 1):
-        for dj in (-1, 0, 1):
-            i, j = int(base[0]) + di, int(base[1]) + dj
-            distance = math.hypot(i / scale - (foot[0] - s[0]), j / scale - (foot[1] - s[1]))
-            if distance > 1.0 / scale:
-                continue
-            # r_s² − r_e² = 2·(I,J)·D − |D|², exactly, in integers; D = end − start.
-            diff = 2 * (i * dx + j * dy) - (dx * dx + dy * dy)
-            r_s, r_e = math.hypot(i, j), math.hypot(i - dx, j - dy)
-            mismatch = abs(diff) / (r_s + r_e) if r_s + r_e > 0 else math.inf
-            key = (mismatch, distance, i, j)
-            if best is None or key[:2] < best[:2]:
-                best = key
-    assert best is not None  # the nearest lattice point is within √2/2 units of any point
-    _, _, i, j = best
-    centre_out = (float(s[0] + i / scale), float(s[1] + j / scale))
-    co = np.array(centre_out)
-    return ArcWords(
-        ccw=ccw,
-        offset=(i, j),
-        radius=None,
-        centre=centre_out,
-        r_start=math.hypot(i, j) / scale,
-        r_end=float(np.hypot(*(e - co))),
-        sweep_rad=_controller_sweep(s, e, co, ccw),
+    arcs = _Arcs(
+        start=np.array([start], dtype=np.int64),
+        end=np.array([end], dtype=np.int64),
+        centre=np.array([centre], dtype=np.float64),
+        radius=np.array([radius], dtype=np.float64),
+        sweep_rad=np.array([sweep_rad], dtype=np.float64),
     )
-
-
-def _r_words(
-    s: FloatArray, e: FloatArray, radius: float, sweep_rad: float, decimals: int
-) -> ArcWords | None:
-    """``R`` form as LinuxCNC's ``arc_data_r`` (and Grbl) read it; ``None`` when the rounded
-    radius no longer reaches across the chord."""
-    scale = 10**decimals
-    big = abs(sweep_rad) > math.pi
-    r_units = round(radius * scale)
-    abs_r = r_units / scale
-    half = 0.5 * float(np.hypot(*(e - s)))
-    if r_units <= 0 or not half < abs_r * (1.0 - 1e-9):
-        return None
-    ccw = sweep_rad > 0.0
-    # The centre lies left of the chord for a minor anticlockwise arc, right for clockwise;
-    # a negative R (major arc) swaps the side.
-    left = ccw != big
-    theta = math.atan2(e[1] - s[1], e[0] - s[0]) + (math.pi / 2 if left else -math.pi / 2)
-    offset = abs_r * math.cos(math.asin(half / abs_r))
-    mid = 0.5 * (s + e)
-    centre = (mid[0] + offset * math.cos(theta), mid[1] + offset * math.sin(theta))
-    return ArcWords(
-        ccw=ccw,
-        offset=None,
-        radius=-r_units if big else r_units,
-        centre=(float(centre[0]), float(centre[1])),
-        r_start=abs_r,
-        r_end=abs_r,
-        sweep_rad=_controller_sweep(s, e, np.array(centre), ccw),
-    )
+    forms = _encode(arcs, decimals, arc_format)
+    form = next((f for f in forms if f.ok[0]), forms[-1])
+    return _words(form, 0, sweep_rad > 0.0)
 
 
 # -- the program ----------------------------------------------------------------------
@@ -542,29 +661,6 @@ def _optional_lines(
     return wanted
 
 
-def _writable(words: ArcWords, decimals: int) -> bool:
-    values = [words.radius] if words.radius is not None else list(words.offset or ())
-    return bool(max(abs(v) for v in values) < MAX_ARC_WORD * 10**decimals)
-
-
-def _arc_choices(
-    cols: SegmentColumns,
-    i: int,
-    start: IntArray,
-    end: IntArray,
-    decimals: int,
-    arc_format: ArcFormat,
-) -> list[ArcWords]:
-    """The ways to write arc ``i``, best first: ``R`` form (if asked for), then ``I``/``J``;
-    none whose numbers exceed :data:`MAX_ARC_WORD`."""
-    s = (int(start[0]), int(start[1]))
-    e = (int(end[0]), int(end[1]))
-    centre, sweep = cols.center[i], float(cols.sweep_rad[i])
-    formats: list[ArcFormat] = ["r", "ij"] if arc_format == "r" else ["ij"]
-    words = [encode_arc(s, e, centre, sweep, decimals, fmt) for fmt in formats]
-    return [w for k, w in enumerate(words) if w not in words[:k] and _writable(w, decimals)]
-
-
 def _measure(
     spiral: Spiral,
     cols: SegmentColumns,
@@ -618,13 +714,17 @@ def _plan(spline: ArcSpline, spiral: Spiral, options: GcodeOptions) -> _Plan:
     limit = spline.tolerance + 10.0**-d
     must = _must_be_lines(cols, start, end, d)
     prefer = _flat_arcs(cols, d) | _optional_lines(spline, spiral, options)
-    choices: list[list[ArcWords | None]] = []
-    for i in range(n):
-        if must[i]:
-            choices.append([None])
-            continue
-        arcs = _arc_choices(cols, i, start[i], end[i], d, options.arc_format)
-        choices.append([None, *arcs] if prefer[i] else [*arcs, None])
+    choices: list[list[ArcWords | None]] = [[None] for _ in range(n)]
+    rows = np.flatnonzero(~must)
+    if len(rows):
+        arcs = _Arcs(
+            start[rows], end[rows], cols.center[rows], cols.radius[rows], cols.sweep_rad[rows]
+        )
+        forms = _encode(arcs, d, options.arc_format)
+        for k, i in enumerate(rows.tolist()):
+            ccw = bool(cols.sweep_rad[i] > 0.0)
+            words: list[ArcWords | None] = [_words(f, k, ccw) for f in forms if f.ok[k]]
+            choices[i] = [None, *words] if prefer[i] else [*words, None]
     chosen: list[ArcWords | None] = [c[0] for c in choices]
     deviation = np.full(n, np.inf)
     rank = np.zeros(n, dtype=np.int64)
