@@ -31,14 +31,17 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+import numpy.typing as npt
 
 from . import canonical
 from .assemble import FLAT_SWEEP_RAD, Frames, splines
 from .errors import GeometryError
 from .fewest_exact import arc_deviation, joint_split, radial
-from .fewest_tail import best_triarc
+from .fewest_tail import Triarc, best_triarcs
 from .spiral import Spiral
 from .types import ArcSpline, BoolArray, FloatArray, SegmentColumns
+
+Float = float | FloatArray
 
 #: Screening samples per arc (a lower bound on its deviation; the proof comes after).
 SAMPLES = 24
@@ -98,10 +101,16 @@ class _Biarcs:
     ok: BoolArray
 
 
-def _biarcs(k: float, m: float, u0: float, u1: FloatArray, lam: FloatArray) -> _Biarcs:
+def _rows(*values: Float, like: FloatArray) -> list[FloatArray]:
+    """Scalars or per-candidate arrays, as arrays shaped like ``like``."""
+    return [np.broadcast_to(np.asarray(v, dtype=np.float64), like.shape) for v in values]
+
+
+def _biarcs(k: Float, m: Float, u0: Float, u1: FloatArray, lam: FloatArray) -> _Biarcs:
+    k, m, u0 = _rows(k, m, u0, like=u1)
     ax, ay = canonical.point(k, m, u0)
     dx, dy = canonical.offset(k, m, u0, u1)
-    phi0 = np.full_like(u1, float(canonical.direction_rad(k, m, u0 * u0)))
+    phi0 = canonical.direction_rad(k, m, u0 * u0)
     phi1 = canonical.direction_rad(k, m, u1 * u1)
     chi = np.arctan2(dy, dx)
     alpha, beta = chi - phi0, phi1 - chi
@@ -116,45 +125,45 @@ def _biarcs(k: float, m: float, u0: float, u1: FloatArray, lam: FloatArray) -> _
         kappa1 = 2.0 * np.sin(0.5 * (phi1 - psi)) / len1
     gx, gy = ax + len0 * c0, ay + len0 * s0
     ok = (len0 > 0.0) & (len1 > 0.0) & np.isfinite(kappa0) & np.isfinite(kappa1)
-    kk, mm = np.full_like(u1, k), np.full_like(u1, m)
-    split = joint_split(kk, mm, gx, gy, psi)
+    split = joint_split(k, m, gx, gy, psi)
     ok &= (split > u0) & (split < u1)
     return _Biarcs(u1, lam, phi0, psi, phi1, kappa0, kappa1, gx, gy, split, ok)
 
 
 def _screen(
-    k: float, m: float, u0: float, b: _Biarcs, samples: FloatArray = _SAMPLE_T
+    k: Float, m: Float, u0: Float, b: _Biarcs, samples: FloatArray = _SAMPLE_T
 ) -> FloatArray:
     """Largest sampled radial distance of each candidate biarc (a lower bound), inf if invalid."""
-    split = np.where(b.ok, b.split, 0.5 * (u0 + b.u1))
+    k, m, u0 = (v[:, None] for v in _rows(k, m, u0, like=b.u1))
+    split = np.where(b.ok, b.split, 0.5 * (u0[:, 0] + b.u1))[:, None]
     ax, ay = canonical.point(k, m, u0)
     t = samples[None, :]
-    ua = u0 + (split - u0)[:, None] * t
-    ub = split[:, None] + (b.u1 - split)[:, None] * t
+    ua = u0 + (split - u0) * t
+    ub = split + (b.u1[:, None] - split) * t
     e0 = radial(k, m, ax, ay, b.phi0[:, None], b.kappa0[:, None], ua).max(axis=1)
     e1 = radial(k, m, b.gx[:, None], b.gy[:, None], b.psi[:, None], b.kappa1[:, None], ub)
     worst = np.maximum(e0, e1.max(axis=1))
     return np.where(b.ok, worst, np.inf)
 
 
-def _verify(k: float, m: float, u0: float, b: _Biarcs, tol: float) -> tuple[FloatArray, ...]:
+def _verify(k: Float, m: Float, u0: Float, b: _Biarcs, tol: Float) -> tuple[FloatArray, ...]:
     """Exact deviations of both arcs of each candidate: ``(dev0, u0_at, dev1, u1_at)``."""
     n = b.u1.shape[0]
-    kk, mm = np.full(2 * n, k), np.full(2 * n, m)
+    k, m, u0, tol = _rows(k, m, u0, tol, like=b.u1)
     ax, ay = canonical.point(k, m, u0)
     bx, by = canonical.point(k, m, b.u1)
     d = arc_deviation(
-        kk,
-        mm,
-        np.concatenate([np.full(n, float(ax)), b.gx]),
-        np.concatenate([np.full(n, float(ay)), b.gy]),
+        np.concatenate([k, k]),
+        np.concatenate([m, m]),
+        np.concatenate([ax, b.gx]),
+        np.concatenate([ay, b.gy]),
         np.concatenate([b.phi0, b.psi]),
         np.concatenate([b.kappa0, b.kappa1]),
         np.concatenate([b.gx, bx]),
         np.concatenate([b.gy, by]),
-        np.concatenate([np.full(n, u0), b.split]),
+        np.concatenate([u0, b.split]),
         np.concatenate([b.split, b.u1]),
-        tol,
+        np.concatenate([tol, tol]),
     )
     value = np.where(np.concatenate([b.ok, b.ok]), d.value, np.inf)
     return value[:n], d.u[:n], value[n:], d.u[n:]
@@ -278,14 +287,15 @@ def fewest_chain(k: float, m: float, tol: float, max_arcs: int) -> Chain | None:
 
 def _merge_tail(k: float, m: float, chain: Chain, tol: float) -> Chain:
     """The chain with its last two biarcs replaced by a proven triarc, if one exists."""
-    n = chain.kappa.shape[0]
-    if n < 4:
+    if chain.kappa.shape[0] < 4:
         return chain
-    found = best_triarc(k, m, float(chain.s[n - 4]), tol)
-    if found is None:
-        return chain
-    t, dev, u_dev = found
-    keep = n - 4
+    u_a = np.array([float(chain.s[-5])])
+    found = best_triarcs(np.array([k]), np.array([m]), u_a, np.array([tol]))[0]
+    return chain if found is None else _splice(chain, *found)
+
+
+def _splice(chain: Chain, t: Triarc, dev: FloatArray, u_dev: FloatArray) -> Chain:
+    keep = chain.kappa.shape[0] - 4
     return Chain(
         jx=np.concatenate([chain.jx[:keep], t.x[0]]),
         jy=np.concatenate([chain.jy[:keep], t.y[0]]),
@@ -347,19 +357,222 @@ def fewest_batch(
     """``fewest-arcs`` for each spiral: the greedy chain if it has no more segments than the
     ``baseline`` (``subdivide``'s result or its error) at world tolerance ``target`` (the
     tolerance less the rounding margin), else the baseline."""
-    out: list[ArcSpline | GeometryError] = []
-    for j, spiral in enumerate(spirals):
+    todo = [j for j, base in enumerate(baseline) if isinstance(base, ArcSpline)]
+    counts = [len(b) if isinstance(b, ArcSpline) else 0 for b in baseline]
+    out = list(baseline)
+    if not todo:
+        return out
+    theta = np.array([spirals[j].turn_angle_rad for j in todo], dtype=np.float64)
+    k, m = canonical.coefficients(theta)
+    scale = np.array([spirals[j].a for j in todo], dtype=np.float64)
+    limit = np.array([min(max_segments, counts[j]) for j in todo], dtype=np.intp)
+    chains = fewest_chains(k, m, target[todo] / scale, limit)
+    for j, chain in zip(todo, chains, strict=True):
         base = baseline[j]
-        if not isinstance(base, ArcSpline):
-            out.append(base)
-            continue
-        k, m = (float(v) for v in canonical.coefficients(spiral.turn_angle_rad))
-        tol = float(target[j]) / spiral.a
-        chain = fewest_chain(k, m, tol, min(max_segments, len(base)))
+        assert isinstance(base, ArcSpline)
         if chain is None or chain.kappa.shape[0] > len(base):
-            out.append(base)
             continue
-        columns = chain_columns(chain, spiral)
+        columns = chain_columns(chain, spirals[j])
         rows = np.zeros(len(columns), dtype=np.intp)
-        out.append(splines(columns, rows, [spiral], tolerances[j : j + 1], base.strategy)[0])
+        out[j] = splines(columns, rows, [spirals[j]], tolerances[j : j + 1], base.strategy)[0]
     return out
+
+
+# -- the same greedy walk, in lockstep over a batch of spirals ------------------------------
+
+
+@dataclass(frozen=True, slots=True)
+class _Round:
+    """Screened candidates of a batch of rows: grid ``(r, W)``, λ ``(r, L)``, dev ``(r, W, L)``."""
+
+    grid: FloatArray
+    lams: FloatArray
+    dev: FloatArray
+    fits: BoolArray
+
+
+def _evaluate(
+    k: FloatArray,
+    m: FloatArray,
+    u0: FloatArray,
+    grid: FloatArray,
+    lams: FloatArray,
+    screen_tol: FloatArray,
+    samples: FloatArray,
+) -> _Round:
+    r, w = grid.shape
+    n_lam = lams.shape[1]
+    uu = np.broadcast_to(grid[:, :, None], (r, w, n_lam)).ravel()
+    ll = np.broadcast_to(lams[:, None, :], (r, w, n_lam)).ravel()
+    kk, mm, u00 = (np.repeat(v, w * n_lam) for v in (k, m, u0))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        b = _biarcs(kk, mm, u00, uu, ll)
+        dev = _screen(kk, mm, u00, b, samples).reshape(r, w, n_lam)
+    return _Round(grid, lams, dev, dev <= screen_tol[:, None, None])
+
+
+def _top(rnd: _Round) -> tuple[FloatArray, FloatArray, BoolArray]:
+    """Per row: the longest fitting ``u1``, the best ``λ`` there, and whether any fits."""
+    feasible: BoolArray = np.any(rnd.fits, axis=2)
+    masked = np.where(feasible, rnd.grid, -np.inf)
+    at = np.argmax(masked, axis=1)
+    rows = np.arange(at.size)
+    best = np.argmin(rnd.dev[rows, at], axis=1)
+    has: BoolArray = np.any(feasible, axis=1)
+    return rnd.grid[rows, at], rnd.lams[rows, best], has
+
+
+def _candidates(rnd: _Round, screen_tol: FloatArray) -> tuple[FloatArray, FloatArray, BoolArray]:
+    """Per row the ``VERIFY`` fitting candidates with the largest ``u1`` (then least dev)."""
+    r, w, n_lam = rnd.dev.shape
+    uu = np.broadcast_to(rnd.grid[:, :, None], (r, w, n_lam)).reshape(r, -1)
+    ll = np.broadcast_to(rnd.lams[:, None, :], (r, w, n_lam)).reshape(r, -1)
+    key = np.where(
+        rnd.fits.reshape(r, -1), -uu + 1e-9 * rnd.dev.reshape(r, -1) / screen_tol[:, None], np.inf
+    )
+    order = np.argsort(key, axis=1)[:, :VERIFY]
+    take = np.take_along_axis
+    ok: BoolArray = np.isfinite(take(key, order, 1))
+    return take(uu, order, 1), take(ll, order, 1), ok
+
+
+def _above(grid: FloatArray | None, u: float) -> float:
+    if grid is None:
+        return np.inf
+    return float(np.where(grid > u, grid, np.inf).min())
+
+
+def _search_many(
+    k: FloatArray,
+    m: FloatArray,
+    u0: FloatArray,
+    tol: FloatArray,
+    screen_tol: FloatArray,
+    hint: FloatArray,
+) -> tuple[BoolArray, _Biarcs, tuple[FloatArray, ...]]:
+    """:func:`_search` for many rows at once (each row its own spiral and ``u0``)."""
+    n = k.size
+    span = 1.0 - u0
+    full = u0[:, None] + span[:, None] * 2.0 ** (-np.arange(U_STEPS) / 2.0)[None, :]
+    full[:, 0] = 1.0
+    octaves = np.linspace(HINT_OCTAVES, -HINT_OCTAVES, HINT_STEPS)
+    near = np.minimum(u0[:, None] + hint[:, None] * 2.0 ** octaves[None, :], 1.0)
+    hinted = (hint > 0.0) & (hint < span)
+    lam0 = np.broadcast_to(_LAMBDA_GRID, (n, LAMBDAS))
+
+    cand_u = np.ones((n, VERIFY))
+    cand_l = np.full((n, VERIFY), 0.5)
+    cand_ok = np.zeros((n, VERIFY), dtype=bool)
+    u_top, lam_top, has = np.zeros(n), np.full(n, 0.5), np.zeros(n, dtype=bool)
+    grid_of: list[FloatArray | None] = [None] * n
+
+    def first(rows: npt.NDArray[np.intp], grid: FloatArray) -> None:
+        if rows.size == 0:
+            return
+        rnd = _evaluate(k[rows], m[rows], u0[rows], grid, lam0[rows], screen_tol[rows], _COARSE_T)
+        top_u, top_l, ok = _top(rnd)
+        cu, cl, cok = _candidates(rnd, screen_tol[rows])
+        u_top[rows], lam_top[rows], has[rows] = top_u, top_l, ok
+        cand_u[rows], cand_l[rows], cand_ok[rows] = cu, cl, cok
+        for j, row in enumerate(rows.tolist()):
+            grid_of[row] = grid[j]
+
+    hrows = np.flatnonzero(hinted)
+    first(hrows, np.concatenate([np.ones((hrows.size, 1)), near[hrows]], axis=1))
+    below = np.where(near < 1.0, near, -np.inf).max(axis=1)
+    retry = hinted & (~has | ((u_top == below) & (u_top < 1.0)))
+    first(np.flatnonzero(~hinted | retry), full[~hinted | retry])
+
+    width = 1.0 / LAMBDAS
+    refining = has & (u_top < 1.0)
+    for _ in range(2):
+        rows = np.flatnonzero(refining)
+        if rows.size == 0:
+            break
+        # The next grid value above the longest fit (grids differ in width between rows).
+        above = np.array(
+            [_above(grid_of[r], float(u_top[r])) for r in rows.tolist()], dtype=np.float64
+        )
+        hi = np.where(np.isfinite(above), above, 1.0)
+        steps = np.linspace(0.0, 1.0, REFINE + 2)[:-1]
+        grid = u_top[rows, None] + (hi - u_top[rows])[:, None] * steps[None, :]
+        lams = np.clip(
+            lam_top[rows, None] + width * np.linspace(-1.0, 1.0, REFINE)[None, :], 1e-3, 1 - 1e-3
+        )
+        rnd = _evaluate(k[rows], m[rows], u0[rows], grid, lams, screen_tol[rows], _SAMPLE_T)
+        top_u, top_l, ok = _top(rnd)
+        cu, cl, cok = _candidates(rnd, screen_tol[rows])
+        # Rows whose refined window has no fit keep their earlier (still valid) candidates.
+        keep = rows[ok]
+        u_top[keep], lam_top[keep] = top_u[ok], top_l[ok]
+        cand_u[keep], cand_l[keep], cand_ok[keep] = cu[ok], cl[ok], cok[ok]
+        for j in np.flatnonzero(ok).tolist():
+            grid_of[int(rows[j])] = grid[j]
+        refining[rows] = ok & (top_u < 1.0)
+        width *= 0.5
+
+    rep = VERIFY
+    kk, mm, u00, tt = (np.repeat(v, rep) for v in (k, m, u0, tol))
+    uu = np.where(cand_ok, cand_u, 1.0).ravel()
+    with np.errstate(invalid="ignore", divide="ignore"):
+        b = _biarcs(kk, mm, u00, uu, cand_l.ravel())
+        d0, w0, d1, w1 = _verify(kk, mm, u00, b, tt)
+    good = ((d0 <= tt) & (d1 <= tt) & cand_ok.ravel() & b.ok).reshape(n, rep)
+    pick = np.arange(n) * rep + np.argmax(good, axis=1)
+    chosen = _Biarcs(*(np.asarray(getattr(b, f))[pick] for f in _Biarcs.__slots__))
+    found: BoolArray = np.asarray(good.any(axis=1))
+    return found, chosen, (d0[pick], w0[pick], d1[pick], w1[pick])
+
+
+def fewest_chains(
+    k: FloatArray, m: FloatArray, tol: FloatArray, max_arcs: npt.NDArray[np.intp]
+) -> list[Chain | None]:
+    """:func:`fewest_chain` for a batch of spirals, the greedy walk in lockstep."""
+    n = k.size
+    parts: list[list[list[float]]] = [[[0.0], [0.0], [0.0], [], [0.0], [], []] for _ in range(n)]
+    failed = np.zeros(n, dtype=bool)
+    u0, hint = np.zeros(n), np.zeros(n)
+    active = np.arange(n)
+    while active.size:
+        pending = active
+        for factor in SCREEN_FACTORS:
+            if pending.size == 0:
+                break
+            found, b, (d0, w0, d1, w1) = _search_many(
+                k[pending],
+                m[pending],
+                u0[pending],
+                tol[pending],
+                factor * tol[pending],
+                hint[pending],
+            )
+            for j in np.flatnonzero(found).tolist():
+                r = int(pending[j])
+                u1 = float(b.u1[j])
+                bx, by = canonical.point(float(k[r]), float(m[r]), u1)
+                jx, jy, phi, kappa, s, dev, u_dev = parts[r]
+                jx += [float(b.gx[j]), float(bx)]
+                jy += [float(b.gy[j]), float(by)]
+                phi += [float(b.psi[j]), float(b.phi1[j])]
+                kappa += [float(b.kappa0[j]), float(b.kappa1[j])]
+                s += [float(b.split[j]), u1]
+                dev += [float(d0[j]), float(d1[j])]
+                u_dev += [float(w0[j]), float(w1[j])]
+                hint[r], u0[r] = u1 - u0[r], u1
+                if len(kappa) + (2 if u1 < 1.0 else 0) > max_arcs[r] or not u1 > s[-3]:
+                    failed[r] = True
+            pending = pending[~found]
+        failed[pending] = True
+        active = active[~failed[active] & (u0[active] < 1.0)]
+    chains: list[Chain | None] = [
+        None if failed[r] else Chain(*(np.array(v, dtype=np.float64) for v in parts[r]))
+        for r in range(n)
+    ]
+    long = [r for r, c in enumerate(chains) if c is not None and c.kappa.shape[0] >= 4]
+    if long:
+        u_a = np.array([float(chains[r].s[-5]) for r in long])  # type: ignore[union-attr]
+        idx = np.array(long)
+        for r, tail in zip(long, best_triarcs(k[idx], m[idx], u_a, tol[idx]), strict=True):
+            if tail is not None:
+                chains[r] = _splice(chains[r], *tail)  # type: ignore[arg-type]
+    return chains

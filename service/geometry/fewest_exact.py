@@ -139,7 +139,7 @@ def arc_deviation(
     ey: FloatArray,
     s_lo: FloatArray,
     s_hi: FloatArray,
-    tolerance: float,
+    tolerance: Float,
 ) -> ArcDeviation:
     """Exact deviation of arcs from ``J = (jx, jy)`` to ``E = (ex, ey)`` over ``[s_lo, s_hi]``.
 

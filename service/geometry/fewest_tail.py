@@ -47,13 +47,13 @@ class Triarc:
 
 
 def _triarcs(
-    k: float, m: float, ua: float, v: FloatArray, delta: FloatArray, lam: FloatArray
+    k: FloatArray, m: FloatArray, ua: FloatArray, v: FloatArray, delta: FloatArray, lam: FloatArray
 ) -> Triarc:
-    n = v.shape[0]
-    ax, ay = (float(c) for c in canonical.point(k, m, ua))
-    phi_a = float(canonical.direction_rad(k, m, ua * ua))
-    phi_b = float(canonical.direction_rad(k, m, 1.0))
-    bx, by = (float(c) for c in canonical.point(k, m, 1.0))
+    """Candidate triarcs, one per element (all arguments of the same shape)."""
+    ax, ay = canonical.point(k, m, ua)
+    phi_a = canonical.direction_rad(k, m, ua * ua)
+    phi_b = canonical.direction_rad(k, m, np.ones_like(k))
+    bx, by = canonical.point(k, m, np.ones_like(k))
     tv = canonical.direction_rad(k, m, v * v)
     nx, ny = -np.sin(tv), np.cos(tv)
     ox, oy = canonical.offset(k, m, ua, v)
@@ -75,82 +75,116 @@ def _triarcs(
         kappa1 = 2.0 * np.sin(0.5 * (psi2 - psi1)) / len0
         kappa2 = 2.0 * np.sin(0.5 * (phi_b - psi2)) / len1
     gx, gy = jx + len0 * np.cos(h0), jy + len0 * np.sin(h0)
-    kk, mm = np.full(n, k), np.full(n, m)
-    s1 = joint_split(kk, mm, jx, jy, psi1)
-    s2 = joint_split(kk, mm, gx, gy, psi2)
+    s1 = joint_split(k, m, jx, jy, psi1)
+    s2 = joint_split(k, m, gx, gy, psi2)
     ok = (den > 0.0) & (len0 > 0.0) & (len1 > 0.0) & (s1 > ua) & (s2 > s1) & (s2 < 1.0)
     ok &= np.isfinite(kappa1) & np.isfinite(kappa2)
-    full = np.full(n, 1.0)
     return Triarc(
-        x=np.stack([full * ax, jx, gx, full * bx], axis=1),
-        y=np.stack([full * ay, jy, gy, full * by], axis=1),
-        phi=np.stack([full * phi_a, psi1, psi2, full * phi_b], axis=1),
+        x=np.stack([ax, jx, gx, bx], axis=1),
+        y=np.stack([ay, jy, gy, by], axis=1),
+        phi=np.stack([phi_a, psi1, psi2, phi_b], axis=1),
         kappa=np.stack([kappa0, kappa1, kappa2], axis=1),
-        s=np.stack([full * ua, s1, s2, full], axis=1),
+        s=np.stack([ua, s1, s2, np.ones_like(k)], axis=1),
         ok=ok,
     )
 
 
-def _screen(k: float, m: float, t: Triarc) -> FloatArray:
-    with np.errstate(invalid="ignore"):  # invalid candidates are NaN, then masked as inf
+def _screen(k: FloatArray, m: FloatArray, t: Triarc) -> FloatArray:
+    with np.errstate(invalid="ignore", divide="ignore"):  # invalid candidates: masked as inf
         return _sampled(k, m, t)
 
 
-def _sampled(k: float, m: float, t: Triarc) -> FloatArray:
+def _sampled(k: FloatArray, m: FloatArray, t: Triarc) -> FloatArray:
     s = np.where(t.ok[:, None], t.s, np.linspace(0.0, 1.0, 4)[None, :])
     worst = np.zeros(t.ok.shape[0])
     for i in range(3):
         u = s[:, i, None] + (s[:, i + 1] - s[:, i])[:, None] * _T[None, :]
         e = radial(
-            k, m, t.x[:, i, None], t.y[:, i, None], t.phi[:, i, None], t.kappa[:, i, None], u
+            k[:, None],
+            m[:, None],
+            t.x[:, i, None],
+            t.y[:, i, None],
+            t.phi[:, i, None],
+            t.kappa[:, i, None],
+            u,
         )
         worst = np.maximum(worst, e.max(axis=1))
     return np.where(t.ok, worst, np.inf)
 
 
-def best_triarc(
-    k: float, m: float, ua: float, tol: float
-) -> tuple[Triarc, FloatArray, FloatArray] | None:
-    """A proven triarc over ``[ua, 1]`` within ``tol``: ``(triarc, dev (3,), u_dev (3,))``."""
+def _build(
+    k: FloatArray, m: FloatArray, ua: FloatArray, grid: FloatArray
+) -> tuple[Triarc, FloatArray]:
+    """Triarcs and scores of candidates ``grid`` (rows, G, 3) = (v, δ, λ) for each row."""
+    g = grid.shape[1]
+    kk, mm, aa = (np.repeat(x, g) for x in (k, m, ua))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        t = _triarcs(kk, mm, aa, grid[..., 0].ravel(), grid[..., 1].ravel(), grid[..., 2].ravel())
+    return t, _screen(kk, mm, t).reshape(-1, g)
+
+
+def best_triarcs(
+    k: FloatArray, m: FloatArray, ua: FloatArray, tol: FloatArray
+) -> list[tuple[Triarc, FloatArray, FloatArray] | None]:
+    """Per row, a proven triarc over ``[ua, 1]`` within ``tol``: ``(triarc, dev, u_dev)``."""
+    n = k.size
     span = 1.0 - ua
-    v_axis = ua + span * np.linspace(0.15, 0.7, 8)
-    d_axis = tol * np.linspace(-1.0, 1.0, 5)
-    l_axis = np.linspace(0.05, 0.95, 9)
-    vv, dd, ll = (a.ravel() for a in np.meshgrid(v_axis, d_axis, l_axis, indexing="ij"))
-    score = _screen(k, m, _triarcs(k, m, ua, vv, dd, ll))
-    best = int(np.argmin(score))
-    centre = np.array([vv[best], dd[best], ll[best]])
-    width = np.array([span * 0.07, tol * 0.5, 0.1])
-    steps = np.linspace(-1.0, 1.0, _AXIS)
-    best_score = float(score[best])
-    for _ in range(_ROUNDS):
-        grids = [centre[i] + width[i] * steps for i in range(3)]
-        vv, dd, ll = (a.ravel() for a in np.meshgrid(*grids, indexing="ij"))
-        vv = np.clip(vv, ua + 1e-9 * span, 1.0 - 1e-9 * span)
-        score = _screen(k, m, _triarcs(k, m, ua, vv, dd, ll))
-        best = int(np.argmin(score))
-        if score[best] < best_score:
-            best_score = float(score[best])
-            centre = np.array([vv[best], dd[best], ll[best]])
-        width *= 0.5
-    if not best_score <= 0.999 * tol:
-        return None
-    t = _triarcs(k, m, ua, centre[:1], centre[1:2], centre[2:])
-    if not t.ok[0]:
-        return None
-    d = arc_deviation(
-        np.full(3, k),
-        np.full(3, m),
-        t.x[0, :3],
-        t.y[0, :3],
-        t.phi[0, :3],
-        t.kappa[0],
-        t.x[0, 1:],
-        t.y[0, 1:],
-        t.s[0, :3],
-        t.s[0, 1:],
-        tol,
+    rows = np.arange(n)
+    unit = np.stack(
+        [
+            a.ravel()
+            for a in np.meshgrid(
+                np.linspace(0.15, 0.7, 8),
+                np.linspace(-1.0, 1.0, 5),
+                np.linspace(0.05, 0.95, 9),
+                indexing="ij",
+            )
+        ],
+        axis=1,
     )
-    if not np.all(d.value <= tol):
-        return None
-    return t, d.value, d.u
+    scale = np.stack([span, tol, np.ones(n)], axis=1)
+    offset = np.stack([ua, np.zeros(n), np.zeros(n)], axis=1)
+    grid = offset[:, None, :] + scale[:, None, :] * unit[None, :, :]
+    _, score = _build(k, m, ua, grid)
+    best = np.argmin(score, axis=1)
+    centre = grid[rows, best]
+    best_score = score[rows, best]
+    width = np.stack([span * 0.07, tol * 0.5, np.full(n, 0.1)], axis=1)
+    steps = np.linspace(-1.0, 1.0, _AXIS)
+    cube = np.stack([a.ravel() for a in np.meshgrid(steps, steps, steps, indexing="ij")], axis=1)
+    for _ in range(_ROUNDS):
+        grid = centre[:, None, :] + width[:, None, :] * cube[None, :, :]
+        lo, hi = (ua + 1e-9 * span)[:, None], (1.0 - 1e-9 * span)[:, None]
+        grid[..., 0] = np.clip(grid[..., 0], lo, hi)
+        _, score = _build(k, m, ua, grid)
+        best = np.argmin(score, axis=1)
+        better = score[rows, best] < best_score
+        centre = np.where(better[:, None], grid[rows, best], centre)
+        best_score = np.where(better, score[rows, best], best_score)
+        width *= 0.5
+    with np.errstate(invalid="ignore", divide="ignore"):
+        t = _triarcs(k, m, ua, centre[:, 0], centre[:, 1], centre[:, 2])
+    ok = t.ok & (best_score <= 0.999 * tol)
+    d = arc_deviation(
+        np.repeat(k, 3),
+        np.repeat(m, 3),
+        t.x[:, :3].ravel(),
+        t.y[:, :3].ravel(),
+        t.phi[:, :3].ravel(),
+        t.kappa.ravel(),
+        t.x[:, 1:].ravel(),
+        t.y[:, 1:].ravel(),
+        t.s[:, :3].ravel(),
+        t.s[:, 1:].ravel(),
+        np.repeat(tol, 3),
+    )
+    value, where = d.value.reshape(n, 3), d.u.reshape(n, 3)
+    ok &= np.all(value <= tol[:, None], axis=1)
+    out: list[tuple[Triarc, FloatArray, FloatArray] | None] = []
+    for r in range(n):
+        if not ok[r]:
+            out.append(None)
+            continue
+        row = Triarc(*(getattr(t, f)[r : r + 1] for f in Triarc.__slots__))
+        out.append((row, value[r], where[r]))
+    return out
