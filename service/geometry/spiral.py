@@ -18,6 +18,7 @@ results back.
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -25,14 +26,14 @@ from functools import cached_property
 
 import numpy as np
 
+from . import canonical
+from .arclength import canonical_lengths
 from .errors import GeometryError
 from .types import FloatArray, Point
 
 #: Control points are accepted as "of the paper's form" when each condition holds to this
 #: relative accuracy: enough for coordinates printed with ~7 significant digits.
 FORM_RTOL = 1e-6
-
-_GAUSS_NODES, _GAUSS_WEIGHTS = np.polynomial.legendre.leggauss(24)
 
 
 def _finite(field: str, *values: float) -> None:
@@ -78,7 +79,8 @@ class Spiral:
         _finite("turn_angle_deg", turn_angle_deg)
         if not 0.0 < turn_angle_deg < 90.0:
             raise GeometryError(
-                "turn_angle_deg", f"must lie strictly between 0 and 90 degrees, got {turn_angle_deg}"
+                "turn_angle_deg",
+                f"must lie strictly between 0 and 90 degrees, got {turn_angle_deg}",
             )
         _finite("end_curvature", end_curvature)
         if end_curvature == 0.0:
@@ -219,17 +221,10 @@ class Spiral:
         return result
 
     def arclen(self, u0: float = 0.0, u1: float = 1.0) -> float:
-        """Arc length over ``[u0, u1]`` by 24-point Gauss–Legendre on four sub-intervals.
-
-        The speed ``‖Q'‖`` is the square root of a quartic with no zero on ``[0, 1]`` (the
-        spiral has no cusp), so this is accurate to rounding.
-        """
-        edges = np.linspace(u0, u1, 5)
-        half = 0.5 * np.diff(edges)[:, None]
-        mid = 0.5 * (edges[:-1] + edges[1:])[:, None]
-        u = mid + half * _GAUSS_NODES[None, :]
-        d = self.deriv(u)
-        return float(np.sum(half * _GAUSS_WEIGHTS[None, :] * np.hypot(d[..., 0], d[..., 1])))
+        """Arc length over ``[u0, u1]``: the canonical length (``service.geometry.arclength``,
+        Gauss–Legendre on panels graded towards ``u1``) times the scale ``a``."""
+        k, m = canonical.coefficients(np.array([self.turn_angle_rad]))
+        return self.a * float(canonical_lengths(k, m, u0, u1)[0])
 
 
 def _bernstein(points: FloatArray, u: FloatArray) -> FloatArray:
@@ -237,5 +232,5 @@ def _bernstein(points: FloatArray, u: FloatArray) -> FloatArray:
     w = u[..., None]
     layer = [np.broadcast_to(p, (*u.shape, 2)) for p in points]
     while len(layer) > 1:
-        layer = [(1.0 - w) * p + w * q for p, q in zip(layer[:-1], layer[1:], strict=True)]
+        layer = [(1.0 - w) * p + w * q for p, q in itertools.pairwise(layer)]
     return np.array(layer[0], dtype=np.float64)
