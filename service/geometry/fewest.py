@@ -53,7 +53,7 @@ from .types import ArcSpline, BoolArray, FloatArray, SegmentColumns
 Float = float | FloatArray
 
 #: Screening samples per arc (a lower bound on its deviation; the proof comes after).
-SAMPLES = 24
+SAMPLES = 12
 #: Grid of the first round: ``u1 − u0 = (1 − u0)·2^(−j/2)``, ``j = 0 … U_STEPS − 1``.
 U_STEPS = 32
 #: Samples per arc in the first round, which only brackets the longest piece.
@@ -65,7 +65,7 @@ REFINE = 12
 HINT_OCTAVES = 0.75
 HINT_STEPS = 12
 #: How many screened candidates are verified exactly at once.
-VERIFY = 8
+VERIFY = 16
 
 #: Screening aims at these fractions of the tolerance, in turn, until a candidate is proven.
 SCREEN_FACTORS = (0.999, 0.99, 0.95, 0.8, 0.5)
