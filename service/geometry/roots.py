@@ -35,12 +35,12 @@ def bracketed_newton(
 
     (Either orientation is accepted; the callers' ``fn(lo) ≤ 0 ≤ fn(hi)`` is one.) ``fn``
     returns value and slope. First, plain Newton steps from ``start`` — each costs one
-    evaluation and a handful of array operations. An element is done at its first step below
-    ``RESOLUTION_ULPS`` ulps of its bracket's magnitude (later steps only wander in the
-    evaluation noise). Elements that are not done after ``FAST_ITERATIONS`` steps, or that end
-    outside their bracket, are solved again by the safeguarded iteration from ``start``:
-    Newton steps that would leave the (shrinking) bracket are replaced by bisection, so every
-    element converges.
+    evaluation and a handful of array operations. An element stops at its first step below
+    ``RESOLUTION_ULPS`` ulps of its bracket's magnitude and holds that value, so its result
+    depends on its own iterates only — not on the other elements of the batch. Elements not
+    done after ``FAST_ITERATIONS`` steps, or that end outside their bracket, are solved again
+    by the safeguarded iteration from ``start``: Newton steps that would leave the (shrinking)
+    bracket are replaced by bisection, so every element converges.
     """
     resolution = RESOLUTION_ULPS * _EPS * np.maximum(np.abs(lo), np.abs(hi))
     # One error-state switch per call, not per step: a zero slope only makes a step non-finite,
@@ -66,10 +66,9 @@ def polynomial_root(
     Same iteration and result as ``bracketed_newton``; knowing the polynomial lets the
     safeguarded fallback evaluate only the elements it re-solves.
     """
-    value_and_slope = horner(coefficients)
     resolution = RESOLUTION_ULPS * _EPS * np.maximum(np.abs(lo), np.abs(hi))
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        x = _fast(value_and_slope, lo, hi, start, resolution)
+        x = _fast(horner(coefficients), lo, hi, start, resolution)
         good = np.isfinite(x)
         if np.count_nonzero(good) == good.size:
             return x
@@ -112,7 +111,9 @@ def _fast(
     for _ in range(FAST_ITERATIONS):
         f, df = fn(x)
         step = f / df
-        x = x - step
+        # An element stops at its first step below the resolution: its result then depends
+        # on its own iterates alone, never on how long the rest of the batch takes.
+        x = np.where(done, x, x - step)
         done |= np.abs(step) <= resolution
         if np.count_nonzero(done) == done.size:  # cheaper than done.all() on small arrays
             break
@@ -142,6 +143,7 @@ def _safeguarded(
     # Orient each element so that its function rises through the bracket.
     sign = np.where(fn(lo)[0] <= 0.0, 1.0, -1.0)
     lo, hi = lo.copy(), hi.copy()
+    done = np.zeros(x.shape, dtype=bool)
     for _ in range(MAX_ITERATIONS):
         value, slope = fn(x)
         f, df = sign * value, sign * slope
@@ -152,7 +154,9 @@ def _safeguarded(
         converged = np.abs(step) <= resolution
         newton = x - step
         inside = (newton > lo) & (newton < hi)
-        x = np.where(converged, newton, np.where(inside, newton, 0.5 * (lo + hi)))
-        if converged.all():
+        moved = np.where(converged, newton, np.where(inside, newton, 0.5 * (lo + hi)))
+        x = np.where(done, x, moved)  # as in the fast loop, a finished element holds
+        done |= converged
+        if done.all():
             break
     return x
