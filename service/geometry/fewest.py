@@ -366,8 +366,10 @@ def fewest_batch(
     """``fewest-arcs`` for each spiral: the greedy chain if it has no more segments than the
     ``baseline`` (``subdivide``'s result or its error) at world tolerance ``target`` (the
     tolerance less the rounding margin), else the baseline."""
-    todo = [j for j, base in enumerate(baseline) if isinstance(base, ArcSpline)]
     counts = [len(b) if isinstance(b, ArcSpline) else 0 for b in baseline]
+    # Two segments are the least possible: one arc matching both end tangents needs a chord
+    # that bisects the turn θ, while the spiral's chord turns at most 0.75·θ/2 from T0.
+    todo = [j for j, count in enumerate(counts) if count > 2]
     out = list(baseline)
     if not todo:
         return out
