@@ -80,15 +80,18 @@ class Rs274:
         libs = [self.root / "usr" / "lib", self.root / "usr" / "lib" / "x86_64-linux-gnu"]
         self._library_path = ":".join(str(p) for p in libs)
 
-    def run(self, program: str) -> Verdict:
+    def run(self, program: str, *, continue_on_error: bool = False) -> Verdict:
+        """Interpret ``program`` in batch mode; ``continue_on_error`` is rs274's ``-n 0``."""
         with tempfile.TemporaryDirectory(prefix="rs274-") as scratch:
             home = Path(scratch)
             (home / "tight.ini").write_text(TIGHT_INI)
             (home / "tool.tbl").write_text(TOOL_TABLE)
             (home / "prog.ngc").write_text(program)
+            mode = ["-n", "0"] if continue_on_error else []
             done = subprocess.run(
                 [
                     str(self.root / "usr" / "bin" / "rs274"),
+                    *mode,
                     "-i",
                     "tight.ini",
                     "-t",

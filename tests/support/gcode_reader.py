@@ -5,7 +5,7 @@ the tool path:
 
 * blocks: an optional ``N`` number, words (a letter and a number written in plain decimal:
   no ``nan``, ``inf`` or exponent, which no controller reads), ``(...)`` and ``;`` comments;
-  a letter other than ``G`` or ``M`` may appear once per block;
+  only the letters ``N G M F X Y Z I J R``, and other than ``G`` or ``M`` once per block;
 * modal state: motion (``G0 G1 G2 G3``), plane (``G17 G18 G19``), units (``G20 G21``),
   distance (``G90 G91``), arc distance (``G90.1 G91.1``), feed mode (``G93 G94 G95``), ``F``;
   an unknown G or M code is an error, not ignored;
@@ -44,6 +44,8 @@ _MODAL_GROUPS: dict[float, str] = {
     95: "feed_mode",
 }
 _PROGRAM_END = {2, 30}
+#: The words a program of this project may contain; any other is refused, not ignored.
+_LETTERS = set("NGMFXYZIJR")
 
 
 class GcodeSyntaxError(ValueError):
@@ -158,6 +160,8 @@ def parse_block(line_no: int, raw: str) -> Block:
             raise GcodeSyntaxError(line_no, raw, f"cannot read {code[pos : match.start()]!r}")
         pos = match.end()
         letter, text = match.group(1), match.group(2)
+        if letter not in _LETTERS:
+            raise GcodeSyntaxError(line_no, raw, f"unsupported word {letter}")
         value = float(text)
         if not math.isfinite(value):
             raise GcodeSyntaxError(line_no, raw, "a number that is not finite")
