@@ -45,7 +45,7 @@ def best_of(run: Callable[[], object], budget_s: float = BUDGET_S) -> float:
     start = time.perf_counter()
     run()
     first = time.perf_counter() - start
-    repeats = max(3, min(10_000, math.ceil(budget_s / max(first, 1e-9))))
+    repeats = max(5, min(10_000, math.ceil(budget_s / max(first, 1e-9))))
     best = first
     for _ in range(repeats):
         start = time.perf_counter()
@@ -116,7 +116,7 @@ def batch() -> None:
     failures = [r for r in results if isinstance(r, Exception)]
     assert not failures, f"{len(failures)} spirals failed: {failures[0]}"
     arcs = sum(len(r) for r in results if not isinstance(r, Exception))
-    core = best_of(lambda: approximate_many(spirals, tolerances), budget_s=2.0)
+    core = best_of(lambda: approximate_many(spirals, tolerances), budget_s=4.0)
     core_rate = arcs / core
 
     subset = params[:PLAIN_SUBSET]
