@@ -178,131 +178,6 @@ def _verify(k: Float, m: Float, u0: Float, b: _Biarcs, tol: Float) -> tuple[Floa
     return value[:n], d.u[:n], value[n:], d.u[n:]
 
 
-def _take(b: _Biarcs, i: int) -> _Biarcs:
-    return _Biarcs(*(np.asarray(getattr(b, f))[i : i + 1] for f in _Biarcs.__slots__))
-
-
-def _next_biarc(
-    k: float, m: float, u0: float, tol: float, hint: float
-) -> tuple[_Biarcs, tuple[float, ...]] | None:
-    """The verified biarc from ``u0`` reaching the largest ``u1`` found, or None.
-
-    Sampling underestimates the deviation slightly, so screening aims a little below the
-    tolerance, and lower still when none of the screened candidates passes the proof.
-    ``hint`` is the previous piece's parameter span (0 for none): neighbouring pieces are
-    about as long, so the first grid is placed around it.
-    """
-    for factor in SCREEN_FACTORS:
-        found = _search(k, m, u0, tol, factor * tol, hint)
-        if found is not None:
-            return found
-    return None
-
-
-def _first_round(
-    k: float, m: float, u0: float, screen_tol: float, u_grid: FloatArray
-) -> tuple[_Biarcs, FloatArray, BoolArray]:
-    uu, ll = np.meshgrid(u_grid, _LAMBDA_GRID, indexing="ij")
-    b = _biarcs(k, m, u0, uu.ravel(), ll.ravel())
-    with np.errstate(invalid="ignore"):  # invalid candidates are NaN, then masked as inf
-        dev = _screen(k, m, u0, b, _COARSE_T).reshape(uu.shape)
-    return b, dev, dev <= screen_tol
-
-
-def _search(
-    k: float, m: float, u0: float, tol: float, screen_tol: float, hint: float
-) -> tuple[_Biarcs, tuple[float, ...]] | None:
-    span = 1.0 - u0
-    full = u0 + span * 2.0 ** (-np.arange(U_STEPS) / 2.0)
-    full[0] = 1.0
-    u_grid = full
-    if 0.0 < hint < span:
-        near = u0 + hint * 2.0 ** np.linspace(-HINT_OCTAVES, HINT_OCTAVES, HINT_STEPS)
-        u_grid = np.concatenate([[1.0], near[near < 1.0][::-1]])
-    b, dev, fits = _first_round(k, m, u0, screen_tol, u_grid)
-    rows = np.flatnonzero(fits.any(axis=1))
-    # Outside the hinted window (nothing fits, or the longest candidate below 1 fits): retry
-    # on the full geometric grid.
-    if u_grid is not full and (rows.size == 0 or (rows.min() == 1 and u_grid.size > 1)):
-        u_grid = full
-        b, dev, fits = _first_round(k, m, u0, screen_tol, u_grid)
-        rows = np.flatnonzero(fits.any(axis=1))
-    if rows.size == 0:
-        return None
-    feasible_u = (b, dev, fits)
-    lam_width = 1.0 / LAMBDAS
-    for _ in range(2):
-        top = rows[np.argmax(u_grid[rows])]
-        best_lam = float(b.lam.reshape(dev.shape)[top, np.argmin(dev[top])])
-        if u_grid[top] >= 1.0:
-            break
-        above = u_grid[u_grid > u_grid[top]]
-        hi = float(above.min()) if above.size else 1.0
-        u_grid = np.linspace(u_grid[top], hi, REFINE + 2)[:-1]
-        lams = np.clip(best_lam + lam_width * np.linspace(-1.0, 1.0, REFINE), 1e-3, 1.0 - 1e-3)
-        uu, ll = np.meshgrid(u_grid, lams, indexing="ij")
-        b = _biarcs(k, m, u0, uu.ravel(), ll.ravel())
-        with np.errstate(invalid="ignore"):
-            dev = _screen(k, m, u0, b).reshape(uu.shape)
-        fits = dev <= screen_tol
-        rows = np.flatnonzero(fits.any(axis=1))
-        if rows.size == 0:
-            break
-        feasible_u = (b, dev, fits)
-        lam_width *= 0.5
-    if feasible_u is None:
-        return None
-    b, dev, fits = feasible_u
-    flat = np.flatnonzero(fits.ravel())
-    order = flat[np.lexsort((dev.ravel()[flat], -b.u1[flat]))][:VERIFY]
-    picked = _Biarcs(*(np.asarray(getattr(b, f))[order] for f in _Biarcs.__slots__))
-    d0, w0, d1, w1 = _verify(k, m, u0, picked, tol)
-    good = np.flatnonzero((d0 <= tol) & (d1 <= tol))
-    if good.size == 0:
-        return None
-    i = int(good[0])
-    return _take(picked, i), (float(d0[i]), float(w0[i]), float(d1[i]), float(w1[i]))
-
-
-def fewest_chain(k: float, m: float, tol: float, max_arcs: int) -> Chain | None:
-    """Greedy longest verified biarcs over ``[0, 1]``; None if it fails or needs > max_arcs."""
-    jx, jy, phi, s = [0.0], [0.0], [0.0], [0.0]
-    kappa: list[float] = []
-    dev: list[float] = []
-    u_dev: list[float] = []
-    u0, hint = 0.0, 0.0
-    while u0 < 1.0:
-        if len(kappa) + 2 > max_arcs:
-            return None
-        found = _next_biarc(k, m, u0, tol, hint)
-        if found is None:
-            return None
-        b, (d0, w0, d1, w1) = found
-        u1 = float(b.u1[0])
-        if not u1 > u0:
-            return None
-        bx, by = canonical.point(k, m, u1)
-        jx += [float(b.gx[0]), float(bx)]
-        jy += [float(b.gy[0]), float(by)]
-        phi += [float(b.psi[0]), float(b.phi1[0])]
-        kappa += [float(b.kappa0[0]), float(b.kappa1[0])]
-        s += [float(b.split[0]), u1]
-        dev += [d0, d1]
-        u_dev += [w0, w1]
-        hint, u0 = u1 - u0, u1
-    chain = Chain(*(np.array(v, dtype=np.float64) for v in (jx, jy, phi, kappa, s, dev, u_dev)))
-    return _merge_tail(k, m, chain, tol)
-
-
-def _merge_tail(k: float, m: float, chain: Chain, tol: float) -> Chain:
-    """The chain with its last two biarcs replaced by a proven triarc, if one exists."""
-    if chain.kappa.shape[0] < 4:
-        return chain
-    u_a = np.array([float(chain.s[-5])])
-    found = best_triarcs(np.array([k]), np.array([m]), u_a, np.array([tol]))[0]
-    return chain if found is None else _splice(chain, *found)
-
-
 def _splice(chain: Chain, t: Triarc, dev: FloatArray, u_dev: FloatArray) -> Chain:
     keep = chain.kappa.shape[0] - 4
     return Chain(
@@ -461,7 +336,9 @@ def _search_many(
     screen_tol: FloatArray,
     hint: FloatArray,
 ) -> tuple[BoolArray, _Biarcs, tuple[FloatArray, ...]]:
-    """:func:`_search` for many rows at once (each row its own spiral and ``u0``)."""
+    """From each row's ``u0`` (own spiral, tolerance and previous span ``hint``), the verified
+    biarc reaching the largest ``u1`` found: a first grid around the hint (or a geometric
+    grid over ``(u0, 1]``), two refining rounds, then the proof of the best candidates."""
     n = k.size
     span = 1.0 - u0
     full = u0[:, None] + span[:, None] * 2.0 ** (-np.arange(U_STEPS) / 2.0)[None, :]
@@ -538,7 +415,10 @@ def _search_many(
 def fewest_chains(
     k: FloatArray, m: FloatArray, tol: FloatArray, max_arcs: npt.NDArray[np.intp]
 ) -> list[Chain | None]:
-    """:func:`fewest_chain` for a batch of spirals, the greedy walk in lockstep."""
+    """Greedy longest verified biarcs over ``[0, 1]`` for each spiral, then the tail merge.
+
+    The walk runs in lockstep over the batch; a spiral's chain is None where it fails or
+    would need more than ``max_arcs`` arcs."""
     n = k.size
     parts: list[list[list[float]]] = [[[0.0], [0.0], [0.0], [], [0.0], [], []] for _ in range(n)]
     failed = np.zeros(n, dtype=bool)
