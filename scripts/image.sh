@@ -34,7 +34,9 @@ TEST_PORT="${TEST_PORT:-18080}"
 KUBE_PORT="$((TEST_PORT + 1))"
 DEBIAN_MIRROR="${DEBIAN_MIRROR:-http://deb.debian.org/debian}"
 CACHE_DIR="${CACHE_DIR:-${XDG_CACHE_HOME:-$HOME/.cache}/arcspline}"
-BASE_TARBALL="$CACHE_DIR/debian-bookworm-minbase.tar"
+# Bump BASE_REV when make_base_tarball changes: stale tarballs and imports are then redone.
+BASE_REV=2
+BASE_TARBALL="$CACHE_DIR/debian-bookworm-minbase-r$BASE_REV.tar"
 if [[ -z "${BUILD_CA+set}" && -s /etc/ssl/certs/ca-certificates.crt ]]; then
     BUILD_CA=/etc/ssl/certs/ca-certificates.crt
 fi
@@ -142,7 +144,8 @@ EOF
 
 base_image() {
     ensure_podman
-    if podman image exists "$BASE_IMAGE"; then
+    if podman image exists "$BASE_IMAGE" && [[ "$(podman image inspect \
+        -f '{{index .Config.Labels "local.arcspline.debootstrap"}}' "$BASE_IMAGE")" == "r$BASE_REV" ]]; then
         log "base image $BASE_IMAGE present"
         return 0
     fi
@@ -152,6 +155,7 @@ base_image() {
     fi
     log "podman import $BASE_TARBALL -> $BASE_IMAGE"
     podman import -q --change 'CMD ["bash"]' --change 'ENV LANG=C.UTF-8' \
+        --change "LABEL local.arcspline.debootstrap=r$BASE_REV" \
         "$BASE_TARBALL" "$BASE_IMAGE" >/dev/null
 }
 
@@ -160,6 +164,7 @@ make_base_tarball() {
     local dir
     mkdir -p "$CACHE_DIR"
     dir="$(mktemp -d "$CACHE_DIR/rootfs.XXXXXX")"
+    chmod 755 "$dir" # it becomes the image's /: mktemp's 0700 would lock out non-root users
     log "debootstrap --variant=minbase bookworm ($DEBIAN_MIRROR)"
     if ! "${SUDO[@]}" debootstrap --variant=minbase bookworm "$dir" "$DEBIAN_MIRROR" \
         >"$CACHE_DIR/debootstrap.log" 2>&1; then
@@ -469,7 +474,7 @@ clean() {
     done
     # Intermediate layers double as the build cache: only `clean` drops them.
     podman image prune -f >/dev/null
-    rm -f "$BASE_TARBALL"
+    rm -f "$CACHE_DIR"/debian-bookworm-minbase*.tar
 }
 
 case "${1:-}" in
