@@ -636,7 +636,8 @@ def _must_be_lines(
 def _flat_arcs(cols: SegmentColumns, decimals: int) -> npt.NDArray[np.bool_]:
     """Arcs whose sagitta ``2r·sin²(sweep/4)`` is below half a unit in the last place: the
     precision cannot tell them from their chord."""
-    sagitta = 2.0 * cols.radius * np.sin(0.25 * np.abs(cols.sweep_rad)) ** 2
+    radius = np.where(cols.is_arc, cols.radius, 0.0)  # lines carry an infinite radius
+    sagitta = 2.0 * radius * np.sin(0.25 * np.abs(cols.sweep_rad)) ** 2
     return np.asarray(cols.is_arc & (sagitta < 0.5 * 10.0**-decimals), dtype=np.bool_)
 
 

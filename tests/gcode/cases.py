@@ -68,6 +68,16 @@ CASES: dict[str, Case] = {
         },
         1e-4,
     ),
+    # Turning by 1e-9°: the core itself writes two lines.
+    "flat": Case(
+        {
+            "start": (1.0, 2.0),
+            "start_tangent": (1.0, 1.0),
+            "turn_angle_deg": 1e-9,
+            "end_curvature": 1e-12,
+        },
+        1e-3,
+    ),
     # Turning by 89°, from a straight start into a 5 mm radius.
     "sharp": Case(
         {
