@@ -5,7 +5,7 @@
 #
 # Behind a TLS-intercepting proxy, hand the proxy's CA bundle to the build as a secret:
 #   docker build --secret id=ca,src=/etc/ssl/certs/ca-certificates.crt -t arcspline .
-# Without the secret the build uses the public CAs (Debian's for apt, certifi's for pip).
+# Without the secret the build trusts the usual public CAs (pip: certifi; apt: plain http).
 # The secret is only mounted into the RUN steps that download; it never lands in a layer.
 #
 # Local podman specifics (base image made with debootstrap, runc, host network) live in
