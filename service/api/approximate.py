@@ -1,0 +1,133 @@
+"""``POST /v1/approximate`` and ``POST /v1/approximate/batch``."""
+
+from __future__ import annotations
+
+import itertools
+from typing import Any
+
+import orjson
+from fastapi import APIRouter
+from pydantic import TypeAdapter, ValidationError
+
+from service.worker import (
+    Encoded,
+    Job,
+    JobResult,
+    PoolError,
+    approximate_chunk,
+    approximate_one,
+    chunk_sizes,
+)
+
+from .errors import (
+    ProblemError,
+    RawJSONResponse,
+    pool_problem,
+    problem,
+    problem_kind,
+    problem_responses,
+    validation_problem,
+)
+from .jobs import job_problem, to_job
+from .runtime import Runtime, RuntimeDep
+from .schemas import ApproximateRequest, ApproximateResponse, BatchRequest, BatchResponse
+
+router = APIRouter(tags=["approximation"])
+
+_JOB_ADAPTER: TypeAdapter[ApproximateRequest] = TypeAdapter(ApproximateRequest)
+
+
+@router.post(
+    "/v1/approximate",
+    name="approximate",
+    summary="Approximate one spiral by arcs",
+    response_model=ApproximateResponse,
+    responses=problem_responses(400, 413, 422, 503, 504),
+)
+async def approximate(body: ApproximateRequest, runtime: RuntimeDep) -> RawJSONResponse:
+    """The arc spline of one spiral within the tolerance, its statistics, and G-code if asked."""
+    job = to_job(body, ["body"])
+    settings = runtime.settings
+    result = await runtime.running_pool().run(
+        approximate_one, job, settings.limits, time_limit_s=settings.job_time_limit_s
+    )
+    if isinstance(result, Encoded):
+        runtime.metrics.job_ok("approximate", result.arc_count, result.line_count)
+        return RawJSONResponse(result.body)
+    runtime.metrics.job_error("approximate")
+    raise ProblemError(job_problem(result, ["body"]))
+
+
+@router.post(
+    "/v1/approximate/batch",
+    name="approximate_batch",
+    summary="Approximate many spirals",
+    response_model=BatchResponse,
+    responses=problem_responses(400, 413, 422, 503),
+)
+async def approximate_batch(body: BatchRequest, runtime: RuntimeDep) -> RawJSONResponse:
+    """One result per job, in order: ``ok`` with the body of /v1/approximate, or ``error``.
+
+    Each job is validated and computed on its own, so a bad job becomes an error entry and
+    spoils nothing else. The jobs go to the workers in a few large tasks.
+    """
+    settings = runtime.settings
+    if len(body.jobs) > settings.batch_max_jobs:
+        detail = (
+            f"the batch has {len(body.jobs)} jobs; at most {settings.batch_max_jobs} are accepted"
+        )
+        raise ProblemError(problem("too_many_jobs", detail, limit=settings.batch_max_jobs))
+
+    entries: list[Encoded | dict[str, Any] | None] = []
+    pending: list[tuple[int, Job]] = []
+    for i, raw in enumerate(body.jobs):
+        prefix: list[str | int] = ["body", "jobs", i]
+        try:
+            request = _JOB_ADAPTER.validate_python(raw)
+            pending.append((i, to_job(request, prefix)))
+            entries.append(None)  # until the worker answers
+        except ValidationError as error:
+            entries.append(validation_problem(error.errors(), prefix))
+        except ProblemError as error:
+            entries.append(error.problem)
+
+    pool = runtime.running_pool()
+    sizes = chunk_sizes(len(pending), min(pool.size, pool.capacity), settings.batch_chunk_min_jobs)
+    bounds = [0, *itertools.accumulate(sizes)]
+    chunks = [pending[begin:end] for begin, end in itertools.pairwise(bounds)]
+    calls = [(approximate_chunk, ([job for _, job in chunk], settings.limits)) for chunk in chunks]
+    outcomes = await pool.run_many(calls, time_limit_s=settings.batch_time_limit_s)
+
+    for chunk, outcome in zip(chunks, outcomes, strict=True):
+        if isinstance(outcome, PoolError):
+            failure, _ = pool_problem(outcome)
+            for i, _job in chunk:
+                entries[i] = failure
+            continue
+        results: list[JobResult] = outcome
+        for (i, _job), result in zip(chunk, results, strict=True):
+            entries[i] = (
+                result if isinstance(result, Encoded) else job_problem(result, ["body", "jobs", i])
+            )
+    return RawJSONResponse(_batch_body(entries, runtime))
+
+
+def _batch_body(entries: list[Encoded | dict[str, Any] | None], runtime: Runtime) -> bytes:
+    """``{"results": [...]}`` from the workers' bytes, joined once (never re-parsed)."""
+    metrics = runtime.metrics
+    parts: list[bytes] = [b'{"results":[']
+    arcs = lines = ok = 0
+    for i, entry in enumerate(entries):
+        if i:
+            parts.append(b",")
+        assert entry is not None, "every job has an answer"
+        if isinstance(entry, Encoded):
+            parts += (b'{"status":"ok","result":', entry.body, b"}")
+            arcs, lines, ok = arcs + entry.arc_count, lines + entry.line_count, ok + 1
+        else:
+            parts += (b'{"status":"error","error":', orjson.dumps(entry), b"}")
+            metrics.job_error("batch")
+            metrics.error(problem_kind(entry))
+    parts.append(b"]}")
+    metrics.job_ok("batch", arcs, lines, ok)
+    return b"".join(parts)

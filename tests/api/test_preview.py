@@ -1,0 +1,64 @@
+"""POST /v1/preview: an SVG document that shows what the issue asks for."""
+
+from __future__ import annotations
+
+import re
+import xml.etree.ElementTree as ET
+from typing import Any
+
+import httpx
+import pytest
+
+from service.api.preview import COLOURS, nice_number
+
+from .conftest import locs, problem_of
+
+pytestmark = pytest.mark.anyio
+
+SVG = "{http://www.w3.org/2000/svg}"
+
+
+async def test_the_preview_draws_the_spiral_arcs_centres_and_deviation(
+    client: httpx.AsyncClient, paper_request: dict[str, Any]
+) -> None:
+    response = await client.post("/v1/preview", json=paper_request)
+    assert response.status_code == 200, response.text
+    assert response.headers["content-type"].startswith("image/svg+xml")
+    root = ET.fromstring(response.text)
+    assert root.tag == f"{SVG}svg"
+    arcs = [p for p in root.iter(f"{SVG}path") if " A" in p.get("d", "")]
+    assert len(arcs) == 12  # Table 1: 12 arcs at 0.001
+    assert [p.get("stroke") for p in arcs] == [COLOURS[i % 2] for i in range(12)]
+    centres = list(root.iter(f"{SVG}circle"))
+    assert [c.get("fill") for c in centres] == [COLOURS[i % 2] for i in range(12)]
+    # The spiral, plus one magnified-deviation curve per segment.
+    assert len(list(root.iter(f"{SVG}polyline"))) == 1 + 12
+    legend = " ".join(t.text or "" for t in root.iter(f"{SVG}text"))
+    magnify = re.search(r"deviation ×(\S+)", legend)
+    assert magnify is not None
+    assert float(magnify.group(1)) > 1
+    assert "12 arcs" in legend
+    assert "tolerance 0.001" in legend
+
+
+async def test_preview_errors_are_problems(client: httpx.AsyncClient) -> None:
+    body = {"spiral": {"control_points": [[0, 0], [1, 0]]}, "tolerance": 0.1}
+    problem = problem_of(await client.post("/v1/preview", json=body), 422)
+    assert ["body", "spiral", "control_points"] in locs(problem)
+
+
+@pytest.mark.parametrize(
+    ("x", "nice"),
+    [
+        (1.0, 1.0),
+        (199.0, 100.0),
+        (200.0, 200.0),
+        (0.07, 0.05),
+        (5e6, 5e6),
+        (1e-320, 1e-300),
+        (0.0, 1e-300),
+        (float("inf"), 1e300),
+    ],
+)
+def test_magnifications_are_round_numbers(x: float, nice: float) -> None:
+    assert nice_number(x) == pytest.approx(nice)
