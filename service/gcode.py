@@ -9,12 +9,13 @@ Rounding, which is where controllers reject programs, follows fixed rules:
 * Every coordinate is a whole number of units in the last place, ``q = 10^-decimals``. The
   joints between segments are rounded first, once each, so consecutive blocks meet exactly
   and the path starts and ends at the spiral's rounded end points.
-* An arc's centre is chosen for the *rounded* end points: the point of their perpendicular
-  bisector nearest the true centre, then, of the lattice points within ``q`` of it, the one
-  whose start and end radii agree best (in exact integer arithmetic). ``I``/``J`` is that
-  point minus the rounded start, so ``|r_end − r_start|`` stays below ``q`` (below
-  ``q·√2·sin(sweep/2)`` in fact). Every block repeats its G word and carries both ``X`` and
-  ``Y`` and both ``I`` and ``J`` (or ``R``).
+* An arc's centre is chosen for the *rounded* end points: on their perpendicular bisector
+  (where start and end radii agree), the point whose circle fits the true arc best
+  (minimax over a few points of it, starting from the bisector point nearest the true
+  centre); then, of the lattice points within ``q`` of it, one whose start and end radii
+  agree within ``q·min(1, √2·sin(|sweep|/2))`` and whose circle fits best. ``I``/``J`` is
+  that point minus the rounded start. Every block repeats its G word and carries both ``X``
+  and ``Y`` and both ``I`` and ``J`` (or ``R``).
 * An arc a controller could take for a full circle is cut as ``G1``: its rounded ends
   coincide, its sweep is below :data:`MIN_SWEEP_RAD`, or its radius is below
   :data:`MIN_RADIUS_ULPS` units in the last place. An arc the precision cannot tell from its
@@ -30,8 +31,8 @@ distance are roots of a polynomial in the spiral parameter), and takes the first
 candidate forms (line or arc, as above; ``R``, then ``I``/``J``, then the chord) whose
 read-back path stays within ``tolerance + q`` of the spiral. When none does, or the spiral's
 coordinates exceed :data:`MAX_COORDINATE`, :class:`GcodeError` says so (``decimals`` too few
-for the tolerance, or ``spiral`` too large). No text is produced
-from a number that is not finite: numbers are formatted from integers.
+for the tolerance, or ``spiral`` too large). No number that is not finite reaches the text:
+every number is formatted from an integer count of units in the last place.
 """
 
 from __future__ import annotations
