@@ -15,7 +15,7 @@ from .errors import GeometryError
 from .fewest import fewest_batch
 from .spiral import Spiral
 from .subdivide import subdivide
-from .types import ArcSpline
+from .types import ArcSpline, FloatArray, SegmentColumns
 
 Strategy = Literal["subdivide", "fewest-arcs"]
 STRATEGIES: tuple[str, ...] = get_args(Strategy)
@@ -139,11 +139,49 @@ def _subdivide_batch(
     outcome = subdivide(k, m, (tolerances - margin) / scale, limits.max_segments // 2)
     frames = Frames.of(spirals)
     columns = segment_columns(outcome.kept, k, m, frames)
-    done = splines(columns, np.repeat(outcome.kept.spiral, 2), spirals, tolerances, strategy)
-    return [
-        _failure(spirals[j], float(tolerances[j]), why, limits) if why else done[j]
-        for j, why in enumerate(outcome.failure)
+    row_spiral = np.repeat(outcome.kept.spiral, 2)
+    done = splines(columns, row_spiral, spirals, tolerances, strategy)
+    placement = _placement_error(columns)
+    unplaceable = np.zeros(len(spirals), dtype=bool)
+    np.logical_or.at(
+        unplaceable, row_spiral, columns.max_deviation + placement > tolerances[row_spiral]
+    )
+    results: list[ArcSpline | GeometryError] = []
+    for j, why in enumerate(outcome.failure):
+        if why:
+            results.append(_failure(spirals[j], float(tolerances[j]), why, limits))
+        elif unplaceable[j]:
+            results.append(_unplaceable(float(tolerances[j]), done[j]))
+        else:
+            results.append(done[j])
+    return results
+
+
+def _placement_error(columns: SegmentColumns) -> FloatArray:
+    """How far rounding has moved each arc, measured: the larger of ``|‖S − C‖ − r|`` at its
+    start and end, in extended precision. Centre and radius are doubles, each off by ulps of
+    its own size, which for the huge radii of nearly straight spirals can exceed a tight
+    tolerance; the end points lie where the method put them, so the gap shows the error."""
+    centre = columns.center.astype(np.longdouble)
+    radius = np.where(columns.is_arc, columns.radius, 0.0).astype(np.longdouble)
+    gaps = [
+        np.abs(np.sqrt(np.sum((p.astype(np.longdouble) - centre) ** 2, axis=1)) - radius)
+        for p in (columns.start, columns.end)
     ]
+    error: FloatArray = np.where(columns.is_arc, np.maximum(*gaps), 0.0).astype(np.float64)
+    return error
+
+
+def _unplaceable(tolerance: float, spline: ArcSpline) -> GeometryError:
+    worst = float(np.max(_placement_error(spline.columns)))
+    return GeometryError(
+        "tolerance",
+        f"{tolerance:.6g} cannot be held in double precision for this spiral: its arcs have "
+        f"radii up to {spline.stats.max_radius:.6g}, whose centres and radii round by up to "
+        f"{worst:.3g}; raise the tolerance",
+        kind="precision",
+        limit=4.0 * worst,
+    )
 
 
 def _fewest_batch(

@@ -13,6 +13,7 @@ import numpy as np
 import numpy.typing as npt
 
 from . import canonical
+from .arclength import canonical_lengths
 from .spiral import Spiral
 from .subdivide import IntArray, Kept
 from .types import ArcSpline, FloatArray, SegmentColumns, SplineStats
@@ -262,31 +263,17 @@ def _stats(
     ]
 
 
-_NODES, _WEIGHTS = np.polynomial.legendre.leggauss(24)
-#: The 96 nodes ``u`` (as ``u²``) and weights of 24-point Gauss–Legendre on four quarters of
-#: ``[0, 1]``, the weights carrying the speed's factor 3.
-_W2 = ((np.arange(4)[:, None] + 0.5 + 0.5 * _NODES[None, :]).ravel() / 4.0) ** 2
-_SPEED_WEIGHTS = 3.0 * np.tile(_WEIGHTS, 4) / 8.0
-#: Spirals per block, so that a block's (rows × 96) temporaries stay in cache.
+#: Spirals per block, so that a block's (rows × nodes) temporaries stay in cache.
 _LENGTH_BLOCK = 1024
 
 
 def spiral_lengths(spirals: list[Spiral]) -> FloatArray:
-    """Arc lengths of many spirals at once: canonical speed ``3·‖(1 + k·u², m·u²)‖`` by
-    24-point Gauss–Legendre on four sub-intervals (as :meth:`Spiral.arclen`), times ``a``."""
+    """Arc lengths of many spirals at once (``service.geometry.arclength``), times ``a``."""
     table = np.array([(s.turn_angle_rad, s.a) for s in spirals], dtype=np.float64)
     theta, scale = table.reshape(-1, 2).T
     k, m = canonical.coefficients(theta)
     lengths = np.empty(k.shape[0])
     for begin in range(0, k.shape[0], _LENGTH_BLOCK):
         block = slice(begin, begin + _LENGTH_BLOCK)
-        # ‖(1 + k·w, m·w)‖ in place: x ← (1 + k·w)² + (m·w)², then its square root.
-        x = np.multiply.outer(k[block], _W2)
-        x += 1.0
-        x *= x
-        y = np.multiply.outer(m[block], _W2)
-        y *= y
-        x += y
-        np.sqrt(x, out=x)
-        lengths[block] = x @ _SPEED_WEIGHTS
+        lengths[block] = canonical_lengths(k[block], m[block])
     return np.asarray(scale * lengths)
