@@ -44,6 +44,7 @@ test: lint typecheck pytest
 
 bench: $(STAMP)
 	$(BIN)/python bench/core.py
+	$(BIN)/python bench/fewest.py
 	$(BIN)/python bench/service.py
 
 openapi: $(STAMP)
