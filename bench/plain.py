@@ -66,7 +66,10 @@ class PlainSpiral:
     def eval(self, u: float) -> Vec:
         s = 1.0 - u
         w = (s * s * s, 3.0 * s * s * u, 3.0 * s * u * u, u * u * u)
-        return (sum(wi * p[0] for wi, p in zip(w, self.b)), sum(wi * p[1] for wi, p in zip(w, self.b)))
+        return (
+            sum(wi * p[0] for wi, p in zip(w, self.b, strict=True)),
+            sum(wi * p[1] for wi, p in zip(w, self.b, strict=True)),
+        )
 
     def deriv(self, u: float) -> Vec:
         k = _sub(_mul(self.bb, self.t1), _mul(self.a, self.t0))
@@ -80,7 +83,10 @@ def make_spiral(start: Vec, tangent: Vec, turn_angle_deg: float, curvature: floa
     bb = 5.0 * math.tan(th) / (9.0 * c)
     t0 = _unit(tangent)
     phi = th if curvature > 0 else -th
-    t1 = (t0[0] * math.cos(phi) - t0[1] * math.sin(phi), t0[0] * math.sin(phi) + t0[1] * math.cos(phi))
+    t1 = (
+        t0[0] * math.cos(phi) - t0[1] * math.sin(phi),
+        t0[0] * math.sin(phi) + t0[1] * math.cos(phi),
+    )
     b1 = _add(start, _mul(a, t0))
     b2 = _add(b1, _mul(a, t0))
     b3 = _add(b2, _mul(bb, t1))
@@ -113,6 +119,28 @@ def _circle(a: Vec, t: Vec, p: Vec) -> tuple[Vec, float]:
     return _add(a, _mul(r, n)), r
 
 
+def _alphas(sp: PlainSpiral, c: Vec) -> tuple[float, float, float, float]:
+    """Theorem 2's α1..α4 for the circle centred at ``c``."""
+    k = _sub(_mul(sp.bb, sp.t1), _mul(sp.a, sp.t0))
+    t0t1 = _dot(sp.t0, sp.t1)
+    return (
+        3.0 * sp.a * sp.a,
+        _dot(k, _sub(sp.b[0], c)),
+        4.0 * sp.a * (sp.bb * t0t1 - sp.a),
+        sp.a * sp.a - 2.0 * sp.a * sp.bb * t0t1 + sp.bb * sp.bb,
+    )
+
+
+def _q(al: tuple[float, float, float, float], ui: float, u: float) -> float:
+    sym4 = u**4 + u**3 * ui + u * u * ui * ui + u * ui**3 + ui**4
+    return al[0] + al[1] * (u + ui) + al[2] * (u * u + u * ui + ui * ui) + al[3] * sym4
+
+
+def _dq(al: tuple[float, float, float, float], ui: float, u: float) -> float:
+    dsym4 = 4 * u**3 + 3 * u * u * ui + 2 * u * ui * ui + ui**3
+    return al[1] + al[2] * (2 * u + ui) + al[3] * dsym4
+
+
 def _biarc(sp: PlainSpiral, u0: float, u1: float) -> tuple[list[PlainArc], float, float]:
     a0, a1 = sp.eval(u0), sp.eval(u1)
     ta0, ta1 = _unit(sp.deriv(u0)), _unit(sp.deriv(u1))
@@ -124,27 +152,17 @@ def _biarc(sp: PlainSpiral, u0: float, u1: float) -> tuple[list[PlainArc], float
     c0, r0 = _circle(a0, ta0, g)
     c1, r1 = _circle(a1, ta1, g)
     h = _unit(_sub(a1, a0))
-    t = _root(
-        lambda u: _dot(_sub(sp.eval(u), g), h), lambda u: _dot(sp.deriv(u), h), u0, u1
-    )
-    k = _sub(_mul(sp.bb, sp.t1), _mul(sp.a, sp.t0))
+    t = _root(lambda u: _dot(_sub(sp.eval(u), g), h), lambda u: _dot(sp.deriv(u), h), u0, u1)
     best, u_best = _norm(_sub(sp.eval(t), g)), t
     for c, r, ui, lo, hi in ((c0, r0, u0, u0, t), (c1, r1, u1, t, u1)):
-        al1 = 3.0 * sp.a * sp.a
-        al2 = _dot(k, _sub(sp.b[0], c))
-        al3 = 4.0 * sp.a * (sp.bb * _dot(sp.t0, sp.t1) - sp.a)
-        al4 = sp.a * sp.a - 2.0 * sp.a * sp.bb * _dot(sp.t0, sp.t1) + sp.bb * sp.bb
-
-        def q(u: float, ui: float = ui, al2: float = al2, al3: float = al3, al4: float = al4) -> float:
-            return al1 + al2 * (u + ui) + al3 * (u * u + u * ui + ui * ui) + al4 * (
-                u**4 + u**3 * ui + u * u * ui * ui + u * ui**3 + ui**4
+        coef = _alphas(sp, c)
+        if _q(coef, ui, lo) * _q(coef, ui, hi) < 0:
+            root = _root(
+                lambda u, coef=coef, ui=ui: _q(coef, ui, u),
+                lambda u, coef=coef, ui=ui: _dq(coef, ui, u),
+                lo,
+                hi,
             )
-
-        def dq(u: float, ui: float = ui, al2: float = al2, al3: float = al3, al4: float = al4) -> float:
-            return al2 + al3 * (2 * u + ui) + al4 * (4 * u**3 + 3 * u * u * ui + 2 * u * ui * ui + ui**3)
-
-        if q(lo) * q(hi) < 0:
-            root = _root(q, dq, lo, hi)
             e = abs(_norm(_sub(sp.eval(root), c)) - abs(r))
             if e > best:
                 best, u_best = e, root
