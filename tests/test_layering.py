@@ -11,7 +11,10 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
-PURE = [*sorted((ROOT / "service" / "geometry").glob("*.py")), ROOT / "service" / "gcode.py"]
+PURE = [
+    *sorted((ROOT / "service" / "geometry").glob("*.py")),
+    *sorted((ROOT / "service" / "gcode").glob("*.py")),
+]
 ALLOWED_THIRD_PARTY = {"numpy"}
 
 
