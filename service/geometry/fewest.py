@@ -45,7 +45,7 @@ import numpy.typing as npt
 from . import canonical
 from .assemble import FLAT_SWEEP_RAD, Frames, splines
 from .errors import GeometryError
-from .fewest_exact import arc_deviation, joint_split, radial
+from .fewest_exact import arc_deviation, joint_split
 from .fewest_tail import Triarc, best_triarcs
 from .spiral import Spiral
 from .types import ArcSpline, BoolArray, FloatArray, SegmentColumns
@@ -54,18 +54,31 @@ Float = float | FloatArray
 
 #: Screening samples per arc (a lower bound on its deviation; the proof comes after).
 SAMPLES = 12
-#: Grid of the first round: ``u1 − u0 = (1 − u0)·2^(−j/2)``, ``j = 0 … U_STEPS − 1``.
+#: Grid of the first round without a hint: ``u1 − u0 = (1 − u0)·2^(−j/2)``,
+#: ``j = 0 … U_STEPS − 1``, against ``LAMBDAS`` join parameters over ``(0, 1)``.
 U_STEPS = 32
+LAMBDAS = 12
+#: Join parameters tried on a piece to the spiral's end.
+END_LAMBDAS = 24
 #: Samples per arc in the first round, which only brackets the longest piece.
 COARSE_SAMPLES = 8
-#: Join-parameter grid of the first round, and the size of each refining round's grids.
-LAMBDAS = 24
-REFINE = 12
-#: The first grid around the previous piece's span: this many octaves either side, points.
-HINT_OCTAVES = 0.75
-HINT_STEPS = 12
-#: How many screened candidates are verified exactly at once.
-VERIFY = 16
+#: The first grid around the previous piece's span: this many octaves either side, points;
+#: and around the previous piece's join parameter: this far either side, points. (Along a
+#: spiral both change slowly: the paper's example at 1e-5 has spans within 10 % of the last
+#: one and ``λ`` within 0.01 of it.)
+HINT_OCTAVES = 0.4
+HINT_STEPS = 8
+HINT_LAMBDA = 0.12
+HINT_LAMBDAS = 7
+#: Refining rounds between the longest fit and the next grid value: ``u1`` points, ``λ`` points.
+REFINE_ROUNDS = 3
+REFINE = 6
+REFINE_LAMBDAS = 5
+LAMBDA_MARGIN = 1e-3
+#: The pieces verified exactly at once: these fractions of the longest screened span.
+LADDER = np.array([1.0, 0.998, 0.994, 0.985, 0.96, 0.9])
+#: Newton steps of screening's split parameter.
+SPLIT_STEPS = 3
 
 #: Screening aims at these fractions of the tolerance, in turn, until a candidate is proven.
 SCREEN_FACTORS = (0.999, 0.99, 0.95, 0.8, 0.5)
@@ -73,6 +86,7 @@ SCREEN_FACTORS = (0.999, 0.99, 0.95, 0.8, 0.5)
 _SAMPLE_T = (np.arange(SAMPLES) + 0.5) / SAMPLES
 _COARSE_T = (np.arange(COARSE_SAMPLES) + 0.5) / COARSE_SAMPLES
 _LAMBDA_GRID = (np.arange(LAMBDAS) + 0.5) / LAMBDAS
+_END_LAMBDA_GRID = (np.arange(END_LAMBDAS) + 0.5) / END_LAMBDAS
 
 
 @dataclass(frozen=True, slots=True)
@@ -115,7 +129,11 @@ def _rows(*values: Float, like: FloatArray) -> list[FloatArray]:
     return [np.broadcast_to(np.asarray(v, dtype=np.float64), like.shape) for v in values]
 
 
-def _biarcs(k: Float, m: Float, u0: Float, u1: FloatArray, lam: FloatArray) -> _Biarcs:
+def _biarcs(
+    k: Float, m: Float, u0: Float, u1: FloatArray, lam: FloatArray, exact: bool = True
+) -> _Biarcs:
+    """Sabin's-circle biarcs; ``exact=False`` (screening) finds the joint's split parameter
+    by a few plain Newton steps instead of the bracketed iteration."""
     k, m, u0 = _rows(k, m, u0, like=u1)
     ax, ay = canonical.point(k, m, u0)
     dx, dy = canonical.offset(k, m, u0, u1)
@@ -134,9 +152,52 @@ def _biarcs(k: Float, m: Float, u0: Float, u1: FloatArray, lam: FloatArray) -> _
         kappa1 = 2.0 * np.sin(0.5 * (phi1 - psi)) / len1
     gx, gy = ax + len0 * c0, ay + len0 * s0
     ok = (len0 > 0.0) & (len1 > 0.0) & np.isfinite(kappa0) & np.isfinite(kappa1)
-    split = joint_split(k, m, gx, gy, psi)
+    split = joint_split(k, m, gx, gy, psi) if exact else _split_guess(k, m, gx, gy, psi, u0, u1)
     ok &= (split > u0) & (split < u1)
     return _Biarcs(u1, lam, phi0, psi, phi1, kappa0, kappa1, gx, gy, split, ok)
+
+
+def _split_guess(
+    k: FloatArray,
+    m: FloatArray,
+    gx: FloatArray,
+    gy: FloatArray,
+    psi: FloatArray,
+    u0: FloatArray,
+    u1: FloatArray,
+) -> FloatArray:
+    """Screening's split parameter of a joint: plain Newton steps on ``(Q(s) − G)·T`` from the
+    piece's middle (the proof recomputes it with :func:`joint_split`); NaN if it leaves the
+    piece."""
+    tx, ty = np.cos(psi), np.sin(psi)
+    s = 0.5 * (u0 + u1)
+    for _ in range(SPLIT_STEPS):
+        s2 = s * s
+        value = (s * (3.0 + k * s2) - gx) * tx + (m * s2 * s - gy) * ty
+        s = s - value / (3.0 * (tx * (1.0 + k * s2) + ty * m * s2))
+    result: FloatArray = np.where((s > u0) & (s < u1), s, np.nan)
+    return result
+
+
+def _radial(
+    k: FloatArray,
+    m: FloatArray,
+    jx: FloatArray,
+    jy: FloatArray,
+    nx: FloatArray,
+    ny: FloatArray,
+    kappa: FloatArray,
+    u: FloatArray,
+) -> FloatArray:
+    """Screening's ``|‖Q(u) − C‖ − r|``: with ``P = Q − J`` and ``d = ‖Q − C‖ = r + s``,
+    ``ν = κ‖P‖² − 2P·N = s·(2 + κs)``, so ``|s| = |ν| / (1 + √(1 + κν))`` (one square root,
+    no ``hypot``; exact in exact arithmetic)."""
+    u2 = u * u
+    px = u * (3.0 + k * u2) - jx
+    py = m * u2 * u - jy
+    nu = kappa * (px * px + py * py) - 2.0 * (px * nx + py * ny)
+    result: FloatArray = np.abs(nu) / (1.0 + np.sqrt(np.abs(1.0 + kappa * nu)))
+    return result
 
 
 def _screen(
@@ -149,8 +210,10 @@ def _screen(
     t = samples[None, :]
     ua = u0 + (split - u0) * t
     ub = split + (b.u1[:, None] - split) * t
-    e0 = radial(k, m, ax, ay, b.phi0[:, None], b.kappa0[:, None], ua).max(axis=1)
-    e1 = radial(k, m, b.gx[:, None], b.gy[:, None], b.psi[:, None], b.kappa1[:, None], ub)
+    n0x, n0y = -np.sin(b.phi0)[:, None], np.cos(b.phi0)[:, None]
+    n1x, n1y = -np.sin(b.psi)[:, None], np.cos(b.psi)[:, None]
+    e0 = _radial(k, m, ax, ay, n0x, n0y, b.kappa0[:, None], ua).max(axis=1)
+    e1 = _radial(k, m, b.gx[:, None], b.gy[:, None], n1x, n1y, b.kappa1[:, None], ub)
     worst = np.maximum(e0, e1.max(axis=1))
     return np.where(b.ok, worst, np.inf)
 
@@ -292,7 +355,7 @@ def _evaluate(
     ll = np.broadcast_to(lams[:, None, :], (r, w, n_lam)).ravel()
     kk, mm, u00 = (np.repeat(v, w * n_lam) for v in (k, m, u0))
     with np.errstate(invalid="ignore", divide="ignore"):
-        b = _biarcs(kk, mm, u00, uu, ll)
+        b = _biarcs(kk, mm, u00, uu, ll, exact=False)
         dev = _screen(kk, mm, u00, b, samples).reshape(r, w, n_lam)
     return _Round(grid, lams, dev, dev <= screen_tol[:, None, None])
 
@@ -308,20 +371,6 @@ def _top(rnd: _Round) -> tuple[FloatArray, FloatArray, BoolArray]:
     return rnd.grid[rows, at], rnd.lams[rows, best], has
 
 
-def _candidates(rnd: _Round, screen_tol: FloatArray) -> tuple[FloatArray, FloatArray, BoolArray]:
-    """Per row the ``VERIFY`` fitting candidates with the largest ``u1`` (then least dev)."""
-    r, w, n_lam = rnd.dev.shape
-    uu = np.broadcast_to(rnd.grid[:, :, None], (r, w, n_lam)).reshape(r, -1)
-    ll = np.broadcast_to(rnd.lams[:, None, :], (r, w, n_lam)).reshape(r, -1)
-    key = np.where(
-        rnd.fits.reshape(r, -1), -uu + 1e-9 * rnd.dev.reshape(r, -1) / screen_tol[:, None], np.inf
-    )
-    order = np.argsort(key, axis=1)[:, :VERIFY]
-    take = np.take_along_axis
-    ok: BoolArray = np.isfinite(take(key, order, 1))
-    return take(uu, order, 1), take(ll, order, 1), ok
-
-
 def _above(grid: FloatArray | None, u: float) -> float:
     if grid is None:
         return np.inf
@@ -335,10 +384,12 @@ def _search_many(
     tol: FloatArray,
     screen_tol: FloatArray,
     hint: FloatArray,
+    lam_hint: FloatArray,
 ) -> tuple[BoolArray, _Biarcs, tuple[FloatArray, ...]]:
-    """From each row's ``u0`` (own spiral, tolerance and previous span ``hint``), the verified
-    biarc reaching the largest ``u1`` found: a first grid around the hint (or a geometric
-    grid over ``(u0, 1]``), two refining rounds, then the proof of the best candidates."""
+    """From each row's ``u0`` (own spiral, tolerance, previous span ``hint`` and join parameter
+    ``lam_hint``), the verified biarc reaching the largest ``u1`` found: a first grid around
+    the hints (or a geometric grid over ``(u0, 1]`` and all ``λ``), refining rounds, then the
+    proof of the best candidates."""
     n = k.size
     span = 1.0 - u0
     full = u0[:, None] + span[:, None] * 2.0 ** (-np.arange(U_STEPS) / 2.0)[None, :]
@@ -346,60 +397,96 @@ def _search_many(
     octaves = np.linspace(HINT_OCTAVES, -HINT_OCTAVES, HINT_STEPS)
     near = np.minimum(u0[:, None] + hint[:, None] * 2.0 ** octaves[None, :], 1.0)
     hinted = (hint > 0.0) & (hint < span)
-    lam0 = np.broadcast_to(_LAMBDA_GRID, (n, LAMBDAS))
+    lam_full = np.broadcast_to(_LAMBDA_GRID, (n, LAMBDAS))
+    lam_near = np.clip(
+        lam_hint[:, None] + HINT_LAMBDA * np.linspace(-1.0, 1.0, HINT_LAMBDAS)[None, :],
+        LAMBDA_MARGIN,
+        1.0 - LAMBDA_MARGIN,
+    )
 
-    cand_u = np.ones((n, VERIFY))
-    cand_l = np.full((n, VERIFY), 0.5)
-    cand_ok = np.zeros((n, VERIFY), dtype=bool)
     u_top, lam_top, has = np.zeros(n), np.full(n, 0.5), np.zeros(n, dtype=bool)
+    width = np.full(n, 1.0 / LAMBDAS)
     grid_of: list[FloatArray | None] = [None] * n
 
-    def first(rows: npt.NDArray[np.intp], grid: FloatArray) -> None:
+    def first(rows: npt.NDArray[np.intp], grid: FloatArray, lams: FloatArray, w: float) -> None:
         if rows.size == 0:
             return
-        rnd = _evaluate(k[rows], m[rows], u0[rows], grid, lam0[rows], screen_tol[rows], _COARSE_T)
+        rnd = _evaluate(k[rows], m[rows], u0[rows], grid, lams, screen_tol[rows], _COARSE_T)
         top_u, top_l, ok = _top(rnd)
-        cu, cl, cok = _candidates(rnd, screen_tol[rows])
-        u_top[rows], lam_top[rows], has[rows] = top_u, top_l, ok
-        cand_u[rows], cand_l[rows], cand_ok[rows] = cu, cl, cok
+        # A retry keeps the hinted round's fit where that reaches further.
+        better = ok & (~has[rows] | (top_u > u_top[rows]))
+        up = rows[better]
+        u_top[up], lam_top[up], has[up], width[up] = top_u[better], top_l[better], True, w
         for j, row in enumerate(rows.tolist()):
-            grid_of[row] = grid[j]
+            seen = grid_of[row]
+            grid_of[row] = grid[j] if seen is None else np.concatenate([seen, grid[j]])
 
+    # The spiral's end is worth a finer scan of the join parameter: reaching it ends the walk.
+    longest = u0 + hint * 2.0**HINT_OCTAVES
+    ends = np.flatnonzero(~hinted | (longest >= 1.0))
+    if ends.size:
+        lam_end = np.broadcast_to(_END_LAMBDA_GRID, (ends.size, END_LAMBDAS))
+        rnd = _evaluate(
+            k[ends],
+            m[ends],
+            u0[ends],
+            np.ones((ends.size, 1)),
+            lam_end,
+            screen_tol[ends],
+            _COARSE_T,
+        )
+        top_u, top_l, ok = _top(rnd)
+        done = ends[ok]
+        u_top[done], lam_top[done], has[done] = 1.0, top_l[ok], True
+    hinted &= ~has
     hrows = np.flatnonzero(hinted)
-    first(hrows, np.concatenate([np.ones((hrows.size, 1)), near[hrows]], axis=1))
-    below = np.where(near < 1.0, near, -np.inf).max(axis=1)
-    retry = hinted & (~has | ((u_top == below) & (u_top < 1.0)))
-    first(np.flatnonzero(~hinted | retry), full[~hinted | retry])
+    first(
+        hrows,
+        np.concatenate([np.ones((hrows.size, 1)), near[hrows]], axis=1),
+        lam_near[hrows],
+        2.0 * HINT_LAMBDA / (HINT_LAMBDAS - 1),
+    )
+    # Retry on the full grid where nothing fits or the hinted grid's longest piece fits
+    # (unless that grid reached the spiral's end, in which case the bracket is closed).
+    retry = hinted & (~has | ((u_top == near[:, 0]) & (longest < 1.0)))
+    again = (~hinted & ~has) | retry
+    first(np.flatnonzero(again), full[again], lam_full[again], 1.0 / LAMBDAS)
 
-    width = 1.0 / LAMBDAS
     refining = has & (u_top < 1.0)
-    for _ in range(2):
+    # Both ends included: the upper one may fit with the finer join parameters.
+    steps = np.linspace(0.0, 1.0, REFINE + 1)
+    lam_steps = np.linspace(-1.0, 1.0, REFINE_LAMBDAS)
+    for _ in range(REFINE_ROUNDS):
         rows = np.flatnonzero(refining)
         if rows.size == 0:
             break
-        # The next grid value above the longest fit (grids differ in width between rows).
+        # The next value above the longest fit among all tried (grids differ between rows).
         above = np.array(
             [_above(grid_of[r], float(u_top[r])) for r in rows.tolist()], dtype=np.float64
         )
         hi = np.where(np.isfinite(above), above, 1.0)
-        steps = np.linspace(0.0, 1.0, REFINE + 2)[:-1]
         grid = u_top[rows, None] + (hi - u_top[rows])[:, None] * steps[None, :]
         lams = np.clip(
-            lam_top[rows, None] + width * np.linspace(-1.0, 1.0, REFINE)[None, :], 1e-3, 1 - 1e-3
+            lam_top[rows, None] + width[rows, None] * lam_steps[None, :],
+            LAMBDA_MARGIN,
+            1.0 - LAMBDA_MARGIN,
         )
         rnd = _evaluate(k[rows], m[rows], u0[rows], grid, lams, screen_tol[rows], _SAMPLE_T)
         top_u, top_l, ok = _top(rnd)
-        cu, cl, cok = _candidates(rnd, screen_tol[rows])
         # Rows whose refined window has no fit keep their earlier (still valid) candidates.
         keep = rows[ok]
         u_top[keep], lam_top[keep] = top_u[ok], top_l[ok]
-        cand_u[keep], cand_l[keep], cand_ok[keep] = cu[ok], cl[ok], cok[ok]
-        for j in np.flatnonzero(ok).tolist():
-            grid_of[int(rows[j])] = grid[j]
+        for j, row in enumerate(rows.tolist()):
+            grid_of[row] = np.concatenate([grid_of[row], grid[j]])
         refining[rows] = ok & (top_u < 1.0)
-        width *= 0.5
+        width[rows] *= 2.0 / (REFINE_LAMBDAS - 1)
 
-    rep = VERIFY
+    # The sampled screen slightly underestimates; rather than search again with a lower
+    # target, the proof tries the longest fit and a ladder of slightly shorter pieces.
+    rep = LADDER.size
+    cand_u = u0[:, None] + (u_top - u0)[:, None] * LADDER[None, :]
+    cand_l = np.repeat(lam_top[:, None], rep, axis=1)
+    cand_ok = np.repeat(has[:, None], rep, axis=1)
     kk, mm, u00, tt = (np.repeat(v, rep) for v in (k, m, u0, tol))
     uu = np.where(cand_ok, cand_u, 1.0).ravel()
     with np.errstate(invalid="ignore", divide="ignore"):
@@ -422,7 +509,7 @@ def fewest_chains(
     n = k.size
     parts: list[list[list[float]]] = [[[0.0], [0.0], [0.0], [], [0.0], [], []] for _ in range(n)]
     failed = np.zeros(n, dtype=bool)
-    u0, hint = np.zeros(n), np.zeros(n)
+    u0, hint, lam_hint = np.zeros(n), np.zeros(n), np.full(n, 0.5)
     active = np.arange(n)
     while active.size:
         pending = active
@@ -436,6 +523,7 @@ def fewest_chains(
                 tol[pending],
                 factor * tol[pending],
                 hint[pending],
+                lam_hint[pending],
             )
             for j in np.flatnonzero(found).tolist():
                 r = int(pending[j])
@@ -449,7 +537,7 @@ def fewest_chains(
                 s += [float(b.split[j]), u1]
                 dev += [float(d0[j]), float(d1[j])]
                 u_dev += [float(w0[j]), float(w1[j])]
-                hint[r], u0[r] = u1 - u0[r], u1
+                hint[r], u0[r], lam_hint[r] = u1 - u0[r], u1, float(b.lam[j])
                 if len(kappa) + (2 if u1 < 1.0 else 0) > max_arcs[r] or not u1 > s[-3]:
                     failed[r] = True
             pending = pending[~found]
