@@ -45,7 +45,7 @@ import numpy.typing as npt
 from . import canonical
 from .assemble import FLAT_SWEEP_RAD, Frames, splines
 from .errors import GeometryError
-from .fewest_exact import arc_deviation, joint_split
+from .fewest_exact import arc_deviation, joint_split, screen_radial, split_guess
 from .fewest_tail import Triarc, best_triarcs
 from .spiral import Spiral
 from .types import ArcSpline, BoolArray, FloatArray, SegmentColumns
@@ -77,8 +77,6 @@ REFINE_LAMBDAS = 5
 LAMBDA_MARGIN = 1e-3
 #: The pieces verified exactly at once: these fractions of the longest screened span.
 LADDER = np.array([1.0, 0.998, 0.994, 0.985, 0.96, 0.9])
-#: Newton steps of screening's split parameter.
-SPLIT_STEPS = 3
 
 #: Screening aims at these fractions of the tolerance, in turn, until a candidate is proven.
 SCREEN_FACTORS = (0.999, 0.99, 0.95, 0.8, 0.5)
@@ -152,52 +150,9 @@ def _biarcs(
         kappa1 = 2.0 * np.sin(0.5 * (phi1 - psi)) / len1
     gx, gy = ax + len0 * c0, ay + len0 * s0
     ok = (len0 > 0.0) & (len1 > 0.0) & np.isfinite(kappa0) & np.isfinite(kappa1)
-    split = joint_split(k, m, gx, gy, psi) if exact else _split_guess(k, m, gx, gy, psi, u0, u1)
+    split = joint_split(k, m, gx, gy, psi) if exact else split_guess(k, m, gx, gy, psi, u0, u1)
     ok &= (split > u0) & (split < u1)
     return _Biarcs(u1, lam, phi0, psi, phi1, kappa0, kappa1, gx, gy, split, ok)
-
-
-def _split_guess(
-    k: FloatArray,
-    m: FloatArray,
-    gx: FloatArray,
-    gy: FloatArray,
-    psi: FloatArray,
-    u0: FloatArray,
-    u1: FloatArray,
-) -> FloatArray:
-    """Screening's split parameter of a joint: plain Newton steps on ``(Q(s) − G)·T`` from the
-    piece's middle (the proof recomputes it with :func:`joint_split`); NaN if it leaves the
-    piece."""
-    tx, ty = np.cos(psi), np.sin(psi)
-    s = 0.5 * (u0 + u1)
-    for _ in range(SPLIT_STEPS):
-        s2 = s * s
-        value = (s * (3.0 + k * s2) - gx) * tx + (m * s2 * s - gy) * ty
-        s = s - value / (3.0 * (tx * (1.0 + k * s2) + ty * m * s2))
-    result: FloatArray = np.where((s > u0) & (s < u1), s, np.nan)
-    return result
-
-
-def _radial(
-    k: FloatArray,
-    m: FloatArray,
-    jx: FloatArray,
-    jy: FloatArray,
-    nx: FloatArray,
-    ny: FloatArray,
-    kappa: FloatArray,
-    u: FloatArray,
-) -> FloatArray:
-    """Screening's ``|‖Q(u) − C‖ − r|``: with ``P = Q − J`` and ``d = ‖Q − C‖ = r + s``,
-    ``ν = κ‖P‖² − 2P·N = s·(2 + κs)``, so ``|s| = |ν| / (1 + √(1 + κν))`` (one square root,
-    no ``hypot``; exact in exact arithmetic)."""
-    u2 = u * u
-    px = u * (3.0 + k * u2) - jx
-    py = m * u2 * u - jy
-    nu = kappa * (px * px + py * py) - 2.0 * (px * nx + py * ny)
-    result: FloatArray = np.abs(nu) / (1.0 + np.sqrt(np.abs(1.0 + kappa * nu)))
-    return result
 
 
 def _screen(
@@ -212,8 +167,8 @@ def _screen(
     ub = split + (b.u1[:, None] - split) * t
     n0x, n0y = -np.sin(b.phi0)[:, None], np.cos(b.phi0)[:, None]
     n1x, n1y = -np.sin(b.psi)[:, None], np.cos(b.psi)[:, None]
-    e0 = _radial(k, m, ax, ay, n0x, n0y, b.kappa0[:, None], ua).max(axis=1)
-    e1 = _radial(k, m, b.gx[:, None], b.gy[:, None], n1x, n1y, b.kappa1[:, None], ub)
+    e0 = screen_radial(k, m, ax, ay, n0x, n0y, b.kappa0[:, None], ua).max(axis=1)
+    e1 = screen_radial(k, m, b.gx[:, None], b.gy[:, None], n1x, n1y, b.kappa1[:, None], ub)
     worst = np.maximum(e0, e1.max(axis=1))
     return np.where(b.ok, worst, np.inf)
 

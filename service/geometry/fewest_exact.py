@@ -65,6 +65,9 @@ _EPS = float(np.finfo(np.float64).eps)
 #: Root levels of the cascade: derivative orders 4, 3, 2, 1, 0 of the quintic ``h``.
 _LEVELS = (4, 3, 2, 1, 0)
 
+#: Newton steps of screening's split parameter (:func:`split_guess`).
+SPLIT_STEPS = 3
+
 
 @dataclass(frozen=True, slots=True)
 class ArcDeviation:
@@ -126,6 +129,50 @@ def joint_split(
         start = np.clip(xx / 3.0, 0.0, 1.0)
         s[ok] = bracketed_newton(g, lo[ok], hi[ok], start)
     return s
+
+
+def split_guess(
+    k: FloatArray,
+    m: FloatArray,
+    gx: FloatArray,
+    gy: FloatArray,
+    psi: FloatArray,
+    u0: FloatArray,
+    u1: FloatArray,
+    start: FloatArray | None = None,
+) -> FloatArray:
+    """Screening's split parameter of a joint: plain Newton steps on ``(Q(s) − G)·T`` from the
+    piece's middle or ``start`` (the proof recomputes it with :func:`joint_split`); NaN if it
+    leaves the piece ``(u0, u1)``."""
+    tx, ty = np.cos(psi), np.sin(psi)
+    s = 0.5 * (u0 + u1) if start is None else start
+    for _ in range(SPLIT_STEPS):
+        s2 = s * s
+        value = (s * (3.0 + k * s2) - gx) * tx + (m * s2 * s - gy) * ty
+        s = s - value / (3.0 * (tx * (1.0 + k * s2) + ty * m * s2))
+    result: FloatArray = np.where((s > u0) & (s < u1), s, np.nan)
+    return result
+
+
+def screen_radial(
+    k: FloatArray,
+    m: FloatArray,
+    jx: FloatArray,
+    jy: FloatArray,
+    nx: FloatArray,
+    ny: FloatArray,
+    kappa: FloatArray,
+    u: FloatArray,
+) -> FloatArray:
+    """Screening's ``|‖Q(u) − C‖ − r|``: with ``P = Q − J`` and ``d = ‖Q − C‖ = r + s``,
+    ``ν = κ‖P‖² − 2P·N = s·(2 + κs)``, so ``|s| = |ν| / (1 + √(1 + κν))`` (one square root,
+    no ``hypot``; exact in exact arithmetic)."""
+    u2 = u * u
+    px = u * (3.0 + k * u2) - jx
+    py = m * u2 * u - jy
+    nu = kappa * (px * px + py * py) - 2.0 * (px * nx + py * ny)
+    result: FloatArray = np.abs(nu) / (1.0 + np.sqrt(np.abs(1.0 + kappa * nu)))
+    return result
 
 
 def arc_deviation(
