@@ -17,6 +17,13 @@ MAX_ITERATIONS = 100
 #: nearly every element converges in three to six.
 FAST_ITERATIONS = 8
 
+#: Steps every element takes before any convergence test: from the callers' start points
+#: nearly every element is within the resolution after three, so the fourth confirms it.
+FIXED_ITERATIONS = 4
+
+#: Arrays up to this size continue on all elements rather than on a gathered subset.
+SMALL = 256
+
 #: Near a root the polynomials here evaluate to rounding noise (a few ulps of their O(1)
 #: terms) over slopes that can be small, so Newton steps stall at tens of ulps, not one.
 #: The roots are used where an error of this size is immaterial: at a maximum of the
@@ -68,7 +75,14 @@ def polynomial_root(
     """
     resolution = RESOLUTION_ULPS * _EPS * np.maximum(np.abs(lo), np.abs(hi))
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        x = _fast(horner(coefficients), lo, hi, start, resolution)
+        x = _fast(
+            horner(coefficients),
+            lo,
+            hi,
+            start,
+            resolution,
+            lambda rows: horner([c[rows] for c in coefficients]),
+        )
         good = np.isfinite(x)
         if np.count_nonzero(good) == good.size:
             return x
@@ -103,24 +117,54 @@ def horner(coefficients: Sequence[FloatArray]) -> ValueAndSlope:
 
 
 def _fast(
-    fn: ValueAndSlope, lo: FloatArray, hi: FloatArray, start: FloatArray, resolution: FloatArray
+    fn: ValueAndSlope,
+    lo: FloatArray,
+    hi: FloatArray,
+    start: FloatArray,
+    resolution: FloatArray,
+    restrict: Callable[[npt.NDArray[np.intp]], ValueAndSlope] | None = None,
 ) -> FloatArray:
-    """Plain Newton steps; elements not done or outside their bracket come back as NaN."""
+    """Plain Newton steps; elements not done or outside their bracket come back as NaN.
+
+    Every element first takes ``FIXED_ITERATIONS`` steps with no per-step bookkeeping: fixed
+    work per element, so its result does not depend on the batch. An element whose last step
+    was still above the resolution goes on, alone with the others like it, until its first
+    step below the resolution, as long as ``FAST_ITERATIONS`` steps in all.
+    """
     x = np.minimum(np.maximum(start, lo), hi)  # np.clip costs several times more
-    done = np.zeros(x.shape, dtype=bool)
-    for _ in range(FAST_ITERATIONS):
+    for _ in range(FIXED_ITERATIONS):
         f, df = fn(x)
         step = f / df
-        # An element stops at its first step below the resolution: its result then depends
-        # on its own iterates alone, never on how long the rest of the batch takes.
-        x = np.where(done, x, x - step)
-        done |= np.abs(step) <= resolution
-        if np.count_nonzero(done) == done.size:  # cheaper than done.all() on small arrays
-            break
+        x = x - step
+    done = np.abs(step) <= resolution
+    if np.count_nonzero(done) != done.size:
+        if x.size <= SMALL:
+            # Gathering a subset costs more than stepping every element of a small array;
+            # the finished elements hold, so the result is the same either way.
+            x, done = _continue(fn, x, resolution, done)
+        else:
+            rest = np.flatnonzero(~done)
+            part = restrict(rest) if restrict else _subset(fn, rest, x)
+            x[rest], done[rest] = _continue(part, x[rest], resolution[rest], done[rest])
     good = done & (x >= lo) & (x <= hi)
     if np.count_nonzero(good) == good.size:
         return x
     return np.where(good, x, np.nan)
+
+
+def _continue(
+    fn: ValueAndSlope, x: FloatArray, resolution: FloatArray, done: npt.NDArray[np.bool_]
+) -> tuple[FloatArray, npt.NDArray[np.bool_]]:
+    """Newton steps after the fixed ones for the elements not ``done``: each holds its value
+    from its first step below the resolution, up to ``FAST_ITERATIONS`` steps in all."""
+    for _ in range(FAST_ITERATIONS - FIXED_ITERATIONS):
+        f, df = fn(x)
+        step = f / df
+        x = np.where(done, x, x - step)
+        done = done | (np.abs(step) <= resolution)
+        if np.count_nonzero(done) == done.size:
+            break
+    return x, done
 
 
 def _subset(fn: ValueAndSlope, which: npt.NDArray[np.intp], x: FloatArray) -> ValueAndSlope:
