@@ -53,15 +53,18 @@ from .types import ArcSpline, BoolArray, FloatArray, SegmentColumns
 Float = float | FloatArray
 
 #: Screening samples per arc (a lower bound on its deviation; the proof comes after).
-SAMPLES = 12
+SAMPLES = 8
 #: Grid of the first round without a hint: ``u1 − u0 = (1 − u0)·2^(−j/2)``,
 #: ``j = 0 … U_STEPS − 1``, against ``LAMBDAS`` join parameters over ``(0, 1)``.
 U_STEPS = 32
 LAMBDAS = 12
+#: The first piece's scan of that grid: join parameters ``0.5 ± SCAN_WIDTH``.
+SCAN_LAMBDAS = 3
+SCAN_WIDTH = 0.2
 #: Join parameters tried on a piece to the spiral's end.
 END_LAMBDAS = 24
 #: Samples per arc in the first round, which only brackets the longest piece.
-COARSE_SAMPLES = 8
+COARSE_SAMPLES = 6
 #: The first grid around the previous piece's span: this many octaves either side, points;
 #: and around the previous piece's join parameter: this far either side, points. (Along a
 #: spiral both change slowly: the paper's example at 1e-5 has spans within 10 % of the last
@@ -77,6 +80,7 @@ REFINE_LAMBDAS = 5
 LAMBDA_MARGIN = 1e-3
 #: The pieces verified exactly at once: these fractions of the longest screened span.
 LADDER = np.array([1.0, 0.998, 0.994, 0.985, 0.96, 0.9])
+FIRST_RUNGS = 2
 
 #: Screening aims at these fractions of the tolerance, in turn, until a candidate is proven.
 SCREEN_FACTORS = (0.999, 0.99, 0.95, 0.8, 0.5)
@@ -84,6 +88,7 @@ SCREEN_FACTORS = (0.999, 0.99, 0.95, 0.8, 0.5)
 _SAMPLE_T = (np.arange(SAMPLES) + 0.5) / SAMPLES
 _COARSE_T = (np.arange(COARSE_SAMPLES) + 0.5) / COARSE_SAMPLES
 _LAMBDA_GRID = (np.arange(LAMBDAS) + 0.5) / LAMBDAS
+_SCAN_LAMBDA_GRID = 0.5 + SCAN_WIDTH * np.linspace(-1.0, 1.0, SCAN_LAMBDAS)
 _END_LAMBDA_GRID = (np.arange(END_LAMBDAS) + 0.5) / END_LAMBDAS
 
 
@@ -346,6 +351,7 @@ def _search_many(
     the hints (or a geometric grid over ``(u0, 1]`` and all ``λ``), refining rounds, then the
     proof of the best candidates."""
     n = k.size
+    hint, lam_hint = hint.copy(), lam_hint.copy()
     span = 1.0 - u0
     full = u0[:, None] + span[:, None] * 2.0 ** (-np.arange(U_STEPS) / 2.0)[None, :]
     full[:, 0] = 1.0
@@ -353,6 +359,7 @@ def _search_many(
     near = np.minimum(u0[:, None] + hint[:, None] * 2.0 ** octaves[None, :], 1.0)
     hinted = (hint > 0.0) & (hint < span)
     lam_full = np.broadcast_to(_LAMBDA_GRID, (n, LAMBDAS))
+    lam_scan = np.broadcast_to(_SCAN_LAMBDA_GRID, (n, SCAN_LAMBDAS))
     lam_near = np.clip(
         lam_hint[:, None] + HINT_LAMBDA * np.linspace(-1.0, 1.0, HINT_LAMBDAS)[None, :],
         LAMBDA_MARGIN,
@@ -394,6 +401,20 @@ def _search_many(
         done = ends[ok]
         u_top[done], lam_top[done], has[done] = 1.0, top_l[ok], True
     hinted &= ~has
+    # Rows without a hint scan the geometric grid with a few join parameters; the bracket of
+    # the longest fit then serves as their hint.
+    scan = np.flatnonzero(~hinted & ~has)
+    first(scan, full[scan], lam_scan[scan], SCAN_WIDTH)
+    hint[scan] = np.where(has[scan], (u_top[scan] - u0[scan]) * 2.0**0.25, 0.0)
+    lam_hint[scan] = lam_top[scan]
+    hinted[scan] = has[scan] & (u_top[scan] < 1.0)
+    has[scan] &= u_top[scan] >= 1.0
+    near = np.minimum(u0[:, None] + hint[:, None] * 2.0 ** octaves[None, :], 1.0)
+    lam_near = np.clip(
+        lam_hint[:, None] + HINT_LAMBDA * np.linspace(-1.0, 1.0, HINT_LAMBDAS)[None, :],
+        LAMBDA_MARGIN,
+        1.0 - LAMBDA_MARGIN,
+    )
     hrows = np.flatnonzero(hinted)
     first(
         hrows,
@@ -403,9 +424,11 @@ def _search_many(
     )
     # Retry on the full grid where nothing fits or the hinted grid's longest piece fits
     # (unless that grid reached the spiral's end, in which case the bracket is closed).
+    longest = u0 + hint * 2.0**HINT_OCTAVES
     retry = hinted & (~has | ((u_top == near[:, 0]) & (longest < 1.0)))
-    again = (~hinted & ~has) | retry
-    first(np.flatnonzero(again), full[again], lam_full[again], 1.0 / LAMBDAS)
+    retry[scan] = False
+    again = np.flatnonzero(retry)
+    first(again, full[again], lam_full[again], 1.0 / LAMBDAS)
 
     refining = has & (u_top < 1.0)
     # Both ends included: the upper one may fit with the finer join parameters.
@@ -437,9 +460,44 @@ def _search_many(
         width[rows] *= 2.0 / (REFINE_LAMBDAS - 1)
 
     # The sampled screen slightly underestimates; rather than search again with a lower
-    # target, the proof tries the longest fit and a ladder of slightly shorter pieces.
-    rep = LADDER.size
-    cand_u = u0[:, None] + (u_top - u0)[:, None] * LADDER[None, :]
+    # target, the proof tries the longest fit and a ladder of slightly shorter pieces: the
+    # first rungs for every row, the rest only where those fail.
+    found, chosen, devs = _prove(k, m, u0, tol, u_top, lam_top, has, LADDER[:FIRST_RUNGS])
+    redo = np.flatnonzero(has & ~found)
+    if redo.size:
+        f2, c2, d2 = _prove(
+            k[redo],
+            m[redo],
+            u0[redo],
+            tol[redo],
+            u_top[redo],
+            lam_top[redo],
+            has[redo],
+            LADDER[FIRST_RUNGS:],
+        )
+        found[redo] = f2
+        for name in _Biarcs.__slots__:
+            np.asarray(getattr(chosen, name))[redo] = getattr(c2, name)
+        for mine, theirs in zip(devs, d2, strict=True):
+            mine[redo] = theirs
+    return found, chosen, devs
+
+
+def _prove(
+    k: FloatArray,
+    m: FloatArray,
+    u0: FloatArray,
+    tol: FloatArray,
+    u_top: FloatArray,
+    lam_top: FloatArray,
+    has: BoolArray,
+    ladder: FloatArray,
+) -> tuple[BoolArray, _Biarcs, tuple[FloatArray, ...]]:
+    """Per row the first rung of ``ladder`` (fractions of the span ``u_top − u0``, join
+    parameter ``lam_top``) whose biarc is proven within ``tol``."""
+    n = k.size
+    rep = ladder.size
+    cand_u = u0[:, None] + (u_top - u0)[:, None] * ladder[None, :]
     cand_l = np.repeat(lam_top[:, None], rep, axis=1)
     cand_ok = np.repeat(has[:, None], rep, axis=1)
     kk, mm, u00, tt = (np.repeat(v, rep) for v in (k, m, u0, tol))

@@ -30,7 +30,10 @@ _SAMPLES = 10
 _T = (np.arange(_SAMPLES) + 0.5) / _SAMPLES
 #: Pattern-search rounds and points per axis of each round.
 _ROUNDS = 8
-_AXIS = 5
+_AXIS = 4
+_SHRINK = 0.55
+#: The first grid's points along ``v``, ``δ`` and ``λ``.
+_GRID = (6, 3, 7)
 #: Rows whose screened deviation is below this fraction of the tolerance stop refining (the
 #: proof follows); rows above this multiple after the first grid are given up (on 400 random
 #: spirals every triarc that was proven started below 1.9 times the tolerance).
@@ -154,9 +157,9 @@ def best_triarcs(
         [
             a.ravel()
             for a in np.meshgrid(
-                np.linspace(0.15, 0.7, 8),
-                np.linspace(-1.0, 1.0, 5),
-                np.linspace(0.05, 0.95, 9),
+                np.linspace(0.15, 0.7, _GRID[0]),
+                np.linspace(-1.0, 1.0, _GRID[1]),
+                np.linspace(0.05, 0.95, _GRID[2]),
                 indexing="ij",
             )
         ],
@@ -188,7 +191,7 @@ def best_triarcs(
         up = act[better]
         centre[up] = grid[np.flatnonzero(better), best[better]]
         best_score[up] = top[better]
-        width *= 0.5
+        width *= _SHRINK
     with np.errstate(invalid="ignore", divide="ignore"):
         t = _triarcs(k, m, ua, centre[:, 0], centre[:, 1], centre[:, 2])
     ok = t.ok & (best_score <= 0.999 * tol)
