@@ -167,11 +167,32 @@ def screen_radial(
     """Screening's ``|‖Q(u) − C‖ − r|``: with ``P = Q − J`` and ``d = ‖Q − C‖ = r + s``,
     ``ν = κ‖P‖² − 2P·N = s·(2 + κs)``, so ``|s| = |ν| / (1 + √(1 + κν))`` (one square root,
     no ``hypot``; exact in exact arithmetic)."""
+    # In-place arithmetic: this runs on every screened sample, and temporaries cost more
+    # than the arithmetic at these array sizes.
     u2 = u * u
-    px = u * (3.0 + k * u2) - jx
-    py = m * u2 * u - jy
-    nu = kappa * (px * px + py * py) - 2.0 * (px * nx + py * ny)
-    result: FloatArray = np.abs(nu) / (1.0 + np.sqrt(np.abs(1.0 + kappa * nu)))
+    px = k * u2
+    px += 3.0
+    px *= u
+    px -= jx
+    py = m * u2
+    py *= u
+    py -= jy
+    nu = px * px
+    nu += py * py
+    nu *= kappa
+    px *= nx
+    py *= ny
+    px += py
+    px *= 2.0
+    nu -= px
+    root = kappa * nu
+    root += 1.0
+    np.abs(root, out=root)
+    np.sqrt(root, out=root)
+    root += 1.0
+    np.abs(nu, out=nu)
+    nu /= root
+    result: FloatArray = nu
     return result
 
 

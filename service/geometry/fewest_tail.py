@@ -26,7 +26,7 @@ from . import canonical
 from .fewest_exact import arc_deviation, joint_split, screen_radial, split_guess
 from .types import BoolArray, FloatArray
 
-_SAMPLES = 10
+_SAMPLES = 8
 _T = (np.arange(_SAMPLES) + 0.5) / _SAMPLES
 #: Pattern-search rounds and points per axis of each round.
 _ROUNDS = 8
@@ -37,8 +37,8 @@ _GRID = (6, 3, 7)
 #: Rows whose screened deviation is below this fraction of the tolerance stop refining (the
 #: proof follows); rows above this multiple after the first grid are given up (on 400 random
 #: spirals every triarc that was proven started below 1.9 times the tolerance).
-_GOOD = 0.9
-_HOPELESS = 3.0
+_GOOD = 0.97
+_HOPELESS = 2.5
 
 
 @dataclass(frozen=True, slots=True)
