@@ -78,9 +78,9 @@ REFINE_ROUNDS = 3
 REFINE = 6
 REFINE_LAMBDAS = 5
 LAMBDA_MARGIN = 1e-3
-#: The pieces verified exactly at once: these fractions of the longest screened span.
-LADDER = np.array([1.0, 0.998, 0.994, 0.985, 0.96, 0.9])
-FIRST_RUNGS = 2
+#: The pieces proven where neither the interpolated crossing nor the longest screened fit
+#: is: these fractions of the longest screened span.
+LADDER = np.array([0.998, 0.994, 0.985, 0.96, 0.9])
 
 #: Screening aims at these fractions of the tolerance, in turn, until a candidate is proven.
 SCREEN_FACTORS = (0.999, 0.99, 0.95, 0.8, 0.5)
@@ -214,44 +214,59 @@ def _splice(chain: Chain, t: Triarc, dev: FloatArray, u_dev: FloatArray) -> Chai
     )
 
 
-def chain_columns(chain: Chain, spiral: Spiral) -> SegmentColumns:
-    """World-coordinate rows of a canonical chain, with the conventions of ``assemble``."""
-    frames = Frames.of([spiral])
-    n = chain.kappa.shape[0]
-    i = np.zeros(n + 1, dtype=np.intp)
-    joints = frames.point(i, chain.jx, chain.jy)
-    joints[0] = frames.origin[0]
-    joints[-1] = frames.end_point[0]
-    i = i[:n]
-    scale = float(frames.scale[0])
-    sweep = chain.phi[1:] - chain.phi[:-1]
+def chain_columns(
+    chains: list[Chain], spirals: list[Spiral]
+) -> tuple[SegmentColumns, npt.NDArray[np.intp]]:
+    """World-coordinate rows of canonical chains (one per spiral), with the conventions of
+    ``assemble``, and the spiral of each row. Elementwise, so a chain's rows do not depend
+    on the others."""
+    frames = Frames.of(spirals)
+    sizes = np.array([c.kappa.shape[0] for c in chains], dtype=np.intp)
+    i = np.repeat(np.arange(len(chains)), sizes)
+    ij = np.repeat(np.arange(len(chains)), sizes + 1)
+    joints = frames.point(
+        ij,
+        np.concatenate([c.jx for c in chains]),
+        np.concatenate([c.jy for c in chains]),
+    )
+    last = np.cumsum(sizes + 1) - 1
+    joints[last - sizes] = frames.origin
+    joints[last] = frames.end_point
+    starts = np.delete(np.arange(joints.shape[0]), last)
+    phi_all = np.concatenate([c.phi for c in chains])
+    phi_start, phi_end = phi_all[starts], phi_all[starts + 1]
+    kappa = np.concatenate([c.kappa for c in chains])
+    s_all = np.concatenate([c.s for c in chains])
+    scale = frames.scale[i]
+    sweep = phi_end - phi_start
     is_arc = np.abs(sweep) > FLAT_SWEEP_RAD
-    start, end = joints[:-1], joints[1:]
+    start, end = joints[starts], joints[starts + 1]
     chord = np.hypot(*(end - start).T)
     with np.errstate(divide="ignore", invalid="ignore"):
-        radius_c = 1.0 / np.abs(chain.kappa)
-        to_centre = np.where(is_arc, 1.0 / chain.kappa, 0.0)
-    nx, ny = -np.sin(chain.phi[:-1]), np.cos(chain.phi[:-1])
+        radius_c = 1.0 / np.abs(kappa)
+        to_centre = np.where(is_arc, 1.0 / kappa, 0.0)
+    nx, ny = -np.sin(phi_start), np.cos(phi_start)
     centre = start + frames.vector(i, to_centre * nx, to_centre * ny)
     radius = scale * radius_c
     length = np.where(is_arc, radius * np.abs(sweep), chord)
-    start_angle = frames.angle(i, chain.phi[:-1] - np.sign(chain.kappa) * 0.5 * np.pi)
+    start_angle = frames.angle(i, phi_start - np.sign(kappa) * 0.5 * np.pi)
     # A flat arc becomes its chord, which is within its sagitta (≤ length·|sweep|/8) of it.
     sagitta = np.where(is_arc, 0.0, chord * np.abs(sweep) / 8.0)
-    return SegmentColumns(
+    columns = SegmentColumns(
         is_arc=is_arc,
         start=start,
         end=end,
         center=np.where(is_arc[:, None], centre, 0.5 * (start + end)),
         radius=np.where(is_arc, radius, np.inf),
         start_angle_rad=np.where(is_arc, start_angle, 0.0),
-        sweep_rad=np.where(is_arc, frames.mirror[0] * sweep, 0.0),
+        sweep_rad=np.where(is_arc, frames.mirror[i] * sweep, 0.0),
         length=length,
-        u_start=chain.s[:-1],
-        u_end=chain.s[1:],
-        max_deviation=scale * chain.dev + sagitta,
-        u_at_max_deviation=chain.u_dev,
+        u_start=s_all[starts],
+        u_end=s_all[starts + 1],
+        max_deviation=scale * np.concatenate([c.dev for c in chains]) + sagitta,
+        u_at_max_deviation=np.concatenate([c.u_dev for c in chains]),
     )
+    return columns, i
 
 
 def fewest_batch(
@@ -276,14 +291,21 @@ def fewest_batch(
     scale = np.array([spirals[j].a for j in todo], dtype=np.float64)
     limit = np.array([min(max_segments, counts[j]) for j in todo], dtype=np.intp)
     chains = fewest_chains(k, m, target[todo] / scale, limit)
-    for j, chain in zip(todo, chains, strict=True):
-        base = baseline[j]
-        assert isinstance(base, ArcSpline)
-        if chain is None or chain.kappa.shape[0] > len(base):
-            continue
-        columns = chain_columns(chain, spirals[j])
-        rows = np.zeros(len(columns), dtype=np.intp)
-        out[j] = splines(columns, rows, [spirals[j]], tolerances[j : j + 1], base.strategy)[0]
+    won = [
+        (j, chain)
+        for j, chain in zip(todo, chains, strict=True)
+        if chain is not None and chain.kappa.shape[0] <= len(baseline[j])  # type: ignore[arg-type]
+    ]
+    if not won:
+        return out
+    picked = [spirals[j] for j, _ in won]
+    columns, rows = chain_columns([c for _, c in won], picked)
+    strategy = baseline[won[0][0]].strategy  # type: ignore[union-attr]
+    index = [j for j, _ in won]
+    for j, spline in zip(
+        index, splines(columns, rows, picked, tolerances[index], strategy), strict=True
+    ):
+        out[j] = spline
     return out
 
 
@@ -329,6 +351,23 @@ def _top(rnd: _Round) -> tuple[FloatArray, FloatArray, BoolArray]:
     best = np.argmin(rnd.dev[rows, at], axis=1)
     has: BoolArray = np.any(feasible, axis=1)
     return rnd.grid[rows, at], rnd.lams[rows, best], has
+
+
+def _crossing(rnd: _Round, u_top: FloatArray, screen_tol: FloatArray) -> FloatArray:
+    """Per row of an ascending grid: where the screened deviation (best ``λ``) reaches the
+    target between the longest fit and the next grid value, by linear interpolation (a chord
+    of the convex growth of the deviation, so it errs short); ``u_top`` at the grid's end."""
+    r, w, _ = rnd.dev.shape
+    rows = np.arange(r)
+    at = np.argmax(np.where(np.any(rnd.fits, axis=2), rnd.grid, -np.inf), axis=1)
+    nxt = np.minimum(at + 1, w - 1)
+    d_top = rnd.dev[rows, at].min(axis=1)
+    d_next = rnd.dev[rows, nxt].min(axis=1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        t = np.clip((screen_tol - d_top) / (d_next - d_top), 0.0, 1.0)
+    t = np.where(np.isfinite(t) & (nxt > at), t, 0.0)
+    result: FloatArray = u_top + (rnd.grid[rows, nxt] - u_top) * t
+    return result
 
 
 def _above(grid: FloatArray | None, u: float) -> float:
@@ -431,6 +470,7 @@ def _search_many(
     first(again, full[again], lam_full[again], 1.0 / LAMBDAS)
 
     refining = has & (u_top < 1.0)
+    u_star = u_top.copy()
     # Both ends included: the upper one may fit with the finer join parameters.
     steps = np.linspace(0.0, 1.0, REFINE + 1)
     lam_steps = np.linspace(-1.0, 1.0, REFINE_LAMBDAS)
@@ -454,6 +494,7 @@ def _search_many(
         # Rows whose refined window has no fit keep their earlier (still valid) candidates.
         keep = rows[ok]
         u_top[keep], lam_top[keep] = top_u[ok], top_l[ok]
+        u_star[keep] = _crossing(rnd, top_u, screen_tol[rows])[ok]
         for j, row in enumerate(rows.tolist()):
             grid_of[row] = np.concatenate([grid_of[row], grid[j]])
         refining[rows] = ok & (top_u < 1.0)
@@ -462,19 +503,13 @@ def _search_many(
     # The sampled screen slightly underestimates; rather than search again with a lower
     # target, the proof tries the longest fit and a ladder of slightly shorter pieces: the
     # first rungs for every row, the rest only where those fail.
-    found, chosen, devs = _prove(k, m, u0, tol, u_top, lam_top, has, LADDER[:FIRST_RUNGS])
+    # The interpolated crossing goes first: the proof, not the screen, decides.
+    first_u = np.stack([u_star, u_top], axis=1)
+    found, chosen, devs = _prove(k, m, u0, tol, first_u, lam_top, has)
     redo = np.flatnonzero(has & ~found)
     if redo.size:
-        f2, c2, d2 = _prove(
-            k[redo],
-            m[redo],
-            u0[redo],
-            tol[redo],
-            u_top[redo],
-            lam_top[redo],
-            has[redo],
-            LADDER[FIRST_RUNGS:],
-        )
+        more_u = u0[redo, None] + (u_top - u0)[redo, None] * LADDER[None, :]
+        f2, c2, d2 = _prove(k[redo], m[redo], u0[redo], tol[redo], more_u, lam_top[redo], has[redo])
         found[redo] = f2
         for name in _Biarcs.__slots__:
             np.asarray(getattr(chosen, name))[redo] = getattr(c2, name)
@@ -488,16 +523,13 @@ def _prove(
     m: FloatArray,
     u0: FloatArray,
     tol: FloatArray,
-    u_top: FloatArray,
+    cand_u: FloatArray,
     lam_top: FloatArray,
     has: BoolArray,
-    ladder: FloatArray,
 ) -> tuple[BoolArray, _Biarcs, tuple[FloatArray, ...]]:
-    """Per row the first rung of ``ladder`` (fractions of the span ``u_top − u0``, join
-    parameter ``lam_top``) whose biarc is proven within ``tol``."""
-    n = k.size
-    rep = ladder.size
-    cand_u = u0[:, None] + (u_top - u0)[:, None] * ladder[None, :]
+    """Per row the first of the piece ends ``cand_u`` (rows, rungs) whose biarc with join
+    parameter ``lam_top`` is proven within ``tol``."""
+    n, rep = cand_u.shape
     cand_l = np.repeat(lam_top[:, None], rep, axis=1)
     cand_ok = np.repeat(has[:, None], rep, axis=1)
     kk, mm, u00, tt = (np.repeat(v, rep) for v in (k, m, u0, tol))
