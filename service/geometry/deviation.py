@@ -68,11 +68,12 @@ def max_deviation(k: FloatArray, m: FloatArray, b: Biarcs, t: FloatArray) -> Dev
     kk, mm = np.concatenate((k, k)), np.concatenate((m, m))
     phi = np.concatenate((b.phi0_rad, b.phi1_rad))
     r = np.concatenate((b.radius0, b.radius1))
-    nx, ny = -np.sin(phi), np.cos(phi)
-    ax, ay = canonical.point(kk, mm, ui)
-    alpha2 = -(kk * (ax + r * nx) + mm * (ay + r * ny))
-    alpha4 = kk * kk + mm * mm
+    # The centre is Q(u_i) + r·N with N = (−sin φ, cos φ): r·N = (−rs, rc).
+    rs, rc = r * np.sin(phi), r * np.cos(phi)
     ui2 = ui * ui
+    ax, ay = ui * (3.0 + kk * ui2), mm * ui2 * ui  # Q(u_i), canonical.point
+    alpha2 = kk * (rs - ax) - mm * (ay + rc)
+    alpha4 = kk * kk + mm * mm
     # q(u) = c0 + c1·u + c2·u² + c3·u³ + α4·u⁴ after expanding the symmetric sums in u_i
     # (α3 = 4k); the slope's coefficients are formed once, not per Newton step.
     c2 = 4.0 * kk + alpha4 * ui2
@@ -83,7 +84,7 @@ def max_deviation(k: FloatArray, m: FloatArray, b: Biarcs, t: FloatArray) -> Dev
     q_hi = (((alpha4 * hi + c3) * hi + c2) * hi + c1) * hi + c0
     bracketed = q_lo * q_hi < 0.0
     # Only bracketed sides have an interior maximum; solve for those alone (usually all).
-    every = bool(bracketed.all())
+    every = np.count_nonzero(bracketed) == bracketed.size
     which: slice | npt.NDArray[np.intp] = slice(None) if every else np.flatnonzero(bracketed)
     root = lo if every else lo.copy()
     w_lo, w_hi, w_q_lo = lo[which], hi[which], q_lo[which]
@@ -95,15 +96,23 @@ def max_deviation(k: FloatArray, m: FloatArray, b: Biarcs, t: FloatArray) -> Dev
         # side ends at u = 1), and the secant of the sub-bracket is a far better start.
         q_s = (((w_a4 * secant + w_c3) * secant + w_c2) * secant + w_c1) * secant + w_c0
         right = (q_s < 0.0) == (w_q_lo < 0.0)  # the root lies right of the secant point
-        near, q_near = np.where(right, secant, w_lo), np.where(right, q_s, w_q_lo)
-        far, q_far = np.where(right, w_hi, secant), np.where(right, w_q_hi, q_s)
-        secant = near + (far - near) * q_near / (q_near - q_far)
+        # The sub-bracket is the secant point and the end where q has the other sign.
+        end, q_end = np.where(right, w_hi, w_lo), np.where(right, w_q_hi, w_q_lo)
+        secant = secant + (end - secant) * q_s / (q_s - q_end)
         found = polynomial_root((w_a4, w_c3, w_c2, w_c1, w_c0), w_lo, w_hi, secant)
         if every:
             root = found
         else:
             root[which] = found
-    side = _radial_deviation(kk, mm, ui, nx, ny, r, root)
+    # |‖Q(u) − C‖ − r| for the circle tangent at Q(u_i): with P = Q(u) − Q(u_i) and
+    # C = Q(u_i) + r·N, ‖Q − C‖ − r = (‖P‖² − 2r·P·N) / (‖P − r·N‖ + r), free of the
+    # cancellation between two nearly equal large numbers that the direct form suffers for
+    # large radii. P is formed in factored form (canonical.offset).
+    h = root - ui
+    sigma = root * root + root * ui + ui2
+    px, py = h * (3.0 + kk * sigma), h * mm * sigma
+    numerator = px * px + py * py + 2.0 * (px * rs - py * rc)
+    side = np.abs(numerator) / (canonical.norm(px + rs, py - rc) + r)
     if not every:
         side = np.where(bracketed, side, 0.0)
 
@@ -123,25 +132,3 @@ def max_deviation(k: FloatArray, m: FloatArray, b: Biarcs, t: FloatArray) -> Dev
         value=np.where(first, arc0, arc1),
         u=np.where(first, u_arc0, u_arc1),
     )
-
-
-def _radial_deviation(
-    k: FloatArray,
-    m: FloatArray,
-    ui: FloatArray,
-    nx: FloatArray,
-    ny: FloatArray,
-    r: FloatArray,
-    u: FloatArray,
-) -> FloatArray:
-    """``|‖Q(u) − C‖ − r|`` for the circle tangent at ``Q(ui)`` with unit normal ``(nx, ny)``.
-
-    With ``P = Q(u) − Q(ui)`` and ``C = Q(ui) + r·N``:
-    ``‖Q − C‖ − r = (‖P‖² − 2r·P·N) / (‖P − r·N‖ + r)``, free of the cancellation between
-    two nearly equal large numbers that the direct form suffers for large radii.
-    """
-    px, py = canonical.offset(k, m, ui, u)
-    rx, ry = r * nx, r * ny
-    numerator = px * px + py * py - 2.0 * (px * rx + py * ry)
-    result: FloatArray = np.abs(numerator) / (canonical.norm(px - rx, py - ry) + r)
-    return result

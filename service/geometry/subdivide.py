@@ -60,11 +60,14 @@ def subdivide(k: FloatArray, m: FloatArray, tolerance: FloatArray, max_biarcs: i
     n = k.shape[0]
     failure = [""] * n
     failed = np.zeros(n, dtype=bool)
+    any_failed = False
+    # One spiral (the latency case) counts in Python integers; a batch per spiral.
+    kept_one = 0
     kept_count = np.zeros(n, dtype=np.intp)
     spiral = np.arange(n, dtype=np.intp)
     u0, u1 = np.zeros(n), np.ones(n)
-    # Every level's pieces and which of them are kept; the kept rows are gathered once at
-    # the end, not field by field at every level.
+    # Every level's pieces and which of them are split (the others are kept); the kept rows
+    # are gathered once at the end, not field by field at every level.
     levels: list[tuple[IntArray, Biarcs, Deviation, npt.NDArray[np.bool_]]] = []
     for _ in range(MAX_LEVELS):
         if spiral.size == 0:
@@ -72,20 +75,34 @@ def subdivide(k: FloatArray, m: FloatArray, tolerance: FloatArray, max_biarcs: i
         kk, mm = k[spiral], m[spiral]
         biarcs = incentre_biarcs(kk, mm, u0, u1)
         deviation = max_deviation(kk, mm, biarcs, split_parameter(kk, mm, biarcs))
-        ok = deviation.value <= tolerance[spiral]
-        levels.append((spiral, biarcs, deviation, ok))
-        split = ~ok
-        at = deviation.u
-        stuck = split & ((at - u0 <= 4.0 * _EPS * u1) | (u1 - at <= 4.0 * _EPS * u1))
-        if stuck.any():
+        split = deviation.value > tolerance[spiral]
+        levels.append((spiral, biarcs, deviation, split))
+        split_count = int(np.count_nonzero(split))
+        if split_count == 0:
+            break
+        going = np.flatnonzero(split)
+        spiral, lo, hi, at = spiral[going], u0[going], u1[going], deviation.u[going]
+        # A piece too short to split in double precision stops its spiral.
+        stuck = np.minimum(at - lo, hi - at) <= (4.0 * _EPS) * hi
+        if np.count_nonzero(stuck):
+            any_failed = True
             _fail(failure, failed, spiral[stuck], "precision")
-        kept_count += np.bincount(spiral[ok], minlength=n)
-        pending = 2 * np.bincount(spiral[split], minlength=n)
-        over = kept_count + pending > max_biarcs
-        if over.any():
-            _fail(failure, failed, np.flatnonzero(over), "segment_limit")
-        going = np.flatnonzero(split & ~failed[spiral])
-        spiral, lo, hi, at = spiral[going], u0[going], u1[going], at[going]
+        # Each pending piece yields at least one more biarc.
+        if n == 1:
+            kept_one += split.size - split_count
+            if kept_one + 2 * split_count > max_biarcs:
+                any_failed = True
+                _fail(failure, failed, spiral[:1], "segment_limit")
+        else:
+            pending = np.bincount(spiral, minlength=n)
+            kept_count += np.bincount(levels[-1][0], minlength=n) - pending
+            over = kept_count + 2 * pending > max_biarcs
+            if np.count_nonzero(over):
+                any_failed = True
+                _fail(failure, failed, np.flatnonzero(over), "segment_limit")
+        if any_failed:
+            going = np.flatnonzero(~failed[spiral])
+            spiral, lo, hi, at = spiral[going], lo[going], hi[going], at[going]
         spiral = np.concatenate((spiral, spiral))
         u0, u1 = np.concatenate((lo, at)), np.concatenate((at, hi))
     else:
@@ -113,9 +130,9 @@ def _ordered(
             deviation=Deviation(*([empty] * len(fields(Deviation)))),
         )
     spiral = np.concatenate([s for s, _, _, _ in levels])
-    ok = np.concatenate([o for _, _, _, o in levels])
+    split = np.concatenate([o for _, _, _, o in levels])
     u0 = np.concatenate([b.u0 for _, b, _, _ in levels])
-    keep = np.flatnonzero(ok & ~failed[spiral])
+    keep = np.flatnonzero(~(split | failed[spiral]))
     order = keep[np.lexsort((u0[keep], spiral[keep]))]
     biarcs = _gather([b for _, b, _, _ in levels], order)
     deviation = _gather([d for _, _, d, _ in levels], order)
