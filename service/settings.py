@@ -47,10 +47,15 @@ class Settings(BaseSettings):
     )
     job_time_limit_s: PositiveFloat = Field(
         default=30.0,
-        description="Time limit of one /v1/approximate or /v1/preview job (504 beyond).",
+        description="Time limit of one /v1/approximate or /v1/preview job (504 beyond); "
+        "k jobs that share a worker task share k times the limit.",
     )
     batch_time_limit_s: PositiveFloat = Field(
         default=120.0, description="Time limit of a whole /v1/approximate/batch request."
+    )
+    coalesce_max_jobs: PositiveInt = Field(
+        default=32,
+        description="Most single jobs sent to a worker as one task while all are busy.",
     )
     batch_max_jobs: PositiveInt = Field(
         default=1000, description="Most jobs in one batch (413 beyond)."

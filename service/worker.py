@@ -1,11 +1,8 @@
-"""The process pool: the jobs it runs, and how it starts, admits, times out, rebuilds and drains.
+"""The process pool: how work reaches the worker processes, is bounded, timed, healed, drained.
 
-Two halves, one concept. The *job functions* (``approximate_one``, ``approximate_chunk``,
-``preview_spline``) run inside worker processes: pure, picklable in and out, they call the
-geometry core and the G-code writer and serialise the response body there, so JSON encoding
-runs in parallel too. :class:`WorkerPool` runs them from the event loop:
+:class:`WorkerPool` runs picklable functions (those of ``service.jobs``) from the event loop:
 
-- admission is bounded by ``capacity`` tasks in flight (running or waiting), not by the pool
+- admission is bounded by ``capacity`` units in flight (running or waiting), not by the pool
   size; beyond it :class:`QueueFullError` (the API answers 503 + Retry-After);
 - at most ``size`` tasks are handed to the executor at once, so a task starts on an idle
   worker and its time limit measures its running time, not its wait;
@@ -16,8 +13,12 @@ runs in parallel too. :class:`WorkerPool` runs them from the event loop:
   failure is :class:`PoolUnavailableError`;
 - :meth:`WorkerPool.drain` waits for in-flight work, then shuts the workers down.
 
-Dependency direction: the API imports this module; this module imports only the geometry
-core and the G-code writer, never the web stack.
+:class:`Coalescer` sends single jobs that arrive while every worker is busy to a worker
+together, as one task: under load one vectorised call of the core serves many requests (and
+one round trip to a worker), while an idle service still starts each job at once.
+
+Dependency direction: the API imports this module; this module and ``service.jobs`` import
+only the geometry core and the G-code writer, never the web stack.
 """
 
 from __future__ import annotations
@@ -30,242 +31,19 @@ import multiprocessing
 import os
 import signal
 import time
+from collections import deque
 from collections.abc import Callable, Iterator, Sequence
 from concurrent.futures import ProcessPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
-from dataclasses import dataclass
-from typing import Any, Literal, TypeVar
-
-import numpy as np
-import orjson
-
-from service.gcode import GcodeError, GcodeOptions, write_program
-from service.geometry import (
-    ArcSpline,
-    GeometryError,
-    Limits,
-    Spiral,
-    Strategy,
-    approximate,
-    approximate_many,
-)
+from typing import Any, Generic, Literal, TypeVar
 
 log = logging.getLogger(__name__)
 T = TypeVar("T")
+Item = TypeVar("Item")
+Arg = TypeVar("Arg")
 
-# -- job functions (run in the worker processes) ----------------------------------------
-
-
-@dataclass(frozen=True, slots=True)
-class ParametersSpec:
-    """A spiral given by the paper's five parameters (§1)."""
-
-    start: tuple[float, float]
-    start_tangent: tuple[float, float]
-    turn_angle_deg: float
-    end_curvature: float
-
-
-@dataclass(frozen=True, slots=True)
-class ControlPointsSpec:
-    """A spiral given by its four Bézier control points."""
-
-    control_points: tuple[tuple[float, float], ...]
-
-
-SpiralSpec = ParametersSpec | ControlPointsSpec
-
-
-@dataclass(frozen=True, slots=True)
-class Job:
-    """One approximation request, as the worker needs it."""
-
-    spiral: SpiralSpec
-    tolerance: float
-    strategy: Strategy = "subdivide"
-    gcode: GcodeOptions | None = None
-
-
-@dataclass(frozen=True, slots=True)
-class Encoded:
-    """A job's response body, already JSON, with the counts the metrics need."""
-
-    body: bytes
-    arc_count: int
-    line_count: int
-
-
-JobResult = Encoded | GeometryError | GcodeError
-
-
-def build_spiral(spec: SpiralSpec) -> Spiral:
-    """The core's spiral for ``spec``; raises :class:`GeometryError` for an invalid one."""
-    if isinstance(spec, ControlPointsSpec):
-        return Spiral.from_control_points(spec.control_points)
-    return Spiral.from_parameters(
-        start=spec.start,
-        start_tangent=spec.start_tangent,
-        turn_angle_deg=spec.turn_angle_deg,
-        end_curvature=spec.end_curvature,
-    )
-
-
-def encode(spline: ArcSpline, gcode: str | None) -> Encoded:
-    """The ``ApproximateResponse`` body of ``spline`` as JSON bytes.
-
-    Built from the columns' ``tolist()`` (one conversion per column, not per value) and
-    serialised by orjson: no per-segment model objects, which a 1000-spiral batch would
-    otherwise spend most of its time building.
-    """
-    c = spline.columns
-    rows = zip(
-        c.is_arc.tolist(),
-        c.start.tolist(),
-        c.end.tolist(),
-        c.center.tolist(),
-        c.radius.tolist(),
-        c.start_angle_rad.tolist(),
-        c.sweep_rad.tolist(),
-        c.length.tolist(),
-        c.u_start.tolist(),
-        c.u_end.tolist(),
-        c.max_deviation.tolist(),
-        c.u_at_max_deviation.tolist(),
-        strict=True,
-    )
-    segments = [
-        {
-            "type": "arc",
-            "start": start,
-            "end": end,
-            "center": center,
-            "radius": radius,
-            "direction": "ccw" if sweep > 0.0 else "cw",
-            "start_angle_rad": angle,
-            "sweep_rad": sweep,
-            "length": length,
-            "u_start": u0,
-            "u_end": u1,
-            "max_deviation": dev,
-            "u_at_max_deviation": u_dev,
-        }
-        if is_arc
-        else {
-            "type": "line",
-            "start": start,
-            "end": end,
-            "length": length,
-            "u_start": u0,
-            "u_end": u1,
-            "max_deviation": dev,
-            "u_at_max_deviation": u_dev,
-        }
-        for is_arc, start, end, center, radius, angle, sweep, length, u0, u1, dev, u_dev in rows
-    ]
-    s = spline.stats
-    stats = {
-        "arc_count": s.arc_count,
-        "line_count": s.line_count,
-        "segment_count": s.segment_count,
-        "max_deviation": s.max_deviation,
-        "u_at_max_deviation": s.u_at_max_deviation,
-        "deviation_ratio": s.deviation_ratio,
-        "mean_segment_deviation": s.mean_segment_deviation,
-        "spiral_length": s.spiral_length,
-        "spline_length": s.spline_length,
-        "min_radius": s.min_radius,
-        "max_radius": s.max_radius,
-        "tolerance": spline.tolerance,
-        "strategy": spline.strategy,
-    }
-    body = orjson.dumps({"segments": segments, "stats": stats, "gcode": gcode})
-    return Encoded(body=body, arc_count=s.arc_count, line_count=s.line_count)
-
-
-def _finite(spline: ArcSpline) -> ArcSpline | GeometryError:
-    """``spline``, or an error if any number of it is not finite.
-
-    The core vouches for its results; this guard keeps NaN and Infinity (which JSON cannot
-    carry) out of every response even so, should a degenerate input slip through.
-    """
-    c, s = spline.columns, spline.stats
-    arcs = c.is_arc
-    columns = (c.start, c.end, c.length, c.u_start, c.u_end, c.max_deviation, c.u_at_max_deviation)
-    stats = (s.max_deviation, s.deviation_ratio, s.mean_segment_deviation, s.spiral_length)
-    finite = (
-        all(bool(np.isfinite(column).all()) for column in columns)
-        and bool(np.isfinite(c.center[arcs]).all() and np.isfinite(c.radius[arcs]).all())
-        and bool(np.isfinite(c.start_angle_rad).all() and np.isfinite(c.sweep_rad).all())
-        and all(math.isfinite(value) for value in (*stats, s.spline_length))
-    )
-    if finite:
-        return spline
-    return GeometryError(
-        "spiral",
-        "cannot be approximated in double precision (its size is negligible next to its "
-        "coordinates, or the tolerance is out of scale)",
-        kind="precision",
-    )
-
-
-def _finish(job: Job, spiral: Spiral, spline: ArcSpline) -> JobResult:
-    """Add the G-code program if asked for, and encode."""
-    checked = _finite(spline)
-    if isinstance(checked, GeometryError):
-        return checked
-    if job.gcode is None:
-        return encode(spline, None)
-    try:
-        program = write_program(spline, spiral, job.gcode)
-    except GcodeError as error:
-        return error
-    return encode(spline, program)
-
-
-def approximate_one(job: Job, limits: Limits) -> JobResult:
-    """One job: the encoded response, or the error that names the offending field."""
-    try:
-        spiral = build_spiral(job.spiral)
-        spline = approximate(spiral, job.tolerance, job.strategy, limits)
-    except GeometryError as error:
-        return error
-    return _finish(job, spiral, spline)
-
-
-def approximate_chunk(jobs: Sequence[Job], limits: Limits) -> list[JobResult]:
-    """Many jobs in one task, in order: one ``approximate_many`` call per strategy."""
-    results: list[JobResult | None] = [None] * len(jobs)
-    spirals: dict[int, Spiral] = {}
-    by_strategy: dict[Strategy, list[int]] = {}
-    for i, job in enumerate(jobs):
-        try:
-            spirals[i] = build_spiral(job.spiral)
-        except GeometryError as error:
-            results[i] = error
-            continue
-        by_strategy.setdefault(job.strategy, []).append(i)
-    for strategy, indices in by_strategy.items():
-        splines = approximate_many(
-            [spirals[i] for i in indices], [jobs[i].tolerance for i in indices], strategy, limits
-        )
-        for i, spline in zip(indices, splines, strict=True):
-            if isinstance(spline, GeometryError):
-                results[i] = spline
-            else:
-                results[i] = _finish(jobs[i], spirals[i], spline)
-    done = [r for r in results if r is not None]
-    assert len(done) == len(jobs), "every job has a result"
-    return done
-
-
-def preview_spline(job: Job, limits: Limits) -> tuple[Spiral, ArcSpline] | GeometryError:
-    """The spiral and its arc spline, for drawing (no G-code, no JSON)."""
-    try:
-        spiral = build_spiral(job.spiral)
-        spline = _finite(approximate(spiral, job.tolerance, job.strategy, limits))
-    except GeometryError as error:
-        return error
-    return spline if isinstance(spline, GeometryError) else (spiral, spline)
+#: Modules the forkserver imports once, so that every worker starts with them loaded.
+PRELOAD = ["service.jobs"]
 
 
 def _initialize_worker() -> None:
@@ -434,47 +212,61 @@ class WorkerPool:
         time_limit_s: float,
         deadline: float | None,
     ) -> T:
+        try:
+            async with asyncio.timeout_at(deadline):
+                await self._slots.acquire()
+        except TimeoutError:
+            raise JobTimeoutError(time_limit_s) from None
+        try:
+            return await self._execute(fn, args, time_limit_s, deadline)
+        finally:
+            self._slots.release()
+
+    async def _execute(
+        self,
+        fn: Callable[..., T],
+        args: tuple[Any, ...],
+        time_limit_s: float,
+        deadline: float | None,
+        units: int = 1,
+    ) -> T:
+        """Run a task in a worker while holding a slot: time limit, rebuild, one retry.
+
+        ``units`` is how many admitted units the task carries (a coalesced task, several).
+        """
         loop = asyncio.get_running_loop()
         for _attempt in range(2):
+            async with self._lock:  # held while rebuilding: wait for the new workers
+                executor, generation = self._executor, self._generation
+            if executor is None:
+                raise PoolUnavailableError("the worker pool has stopped")
             try:
-                async with asyncio.timeout_at(deadline):
-                    await self._slots.acquire()
+                future = executor.submit(fn, *args)
+            except BrokenProcessPool:
+                await self._rebuild(generation)
+                continue
+            self.running += units
+            waiting = asyncio.wrap_future(future)
+            self._waiting[waiting] = generation
+            try:
+                run_deadline = loop.time() + time_limit_s if deadline is None else deadline
+                async with asyncio.timeout_at(run_deadline):
+                    return await waiting
             except TimeoutError:
+                log.warning("a task exceeded its time limit; restarting the workers")
+                await self._rebuild(generation, kill=True)
                 raise JobTimeoutError(time_limit_s) from None
-            try:
-                async with self._lock:  # held while rebuilding: wait for the new workers
-                    executor, generation = self._executor, self._generation
-                if executor is None:
-                    raise PoolUnavailableError("the worker pool has stopped")
-                try:
-                    future = executor.submit(fn, *args)
-                except BrokenProcessPool:
-                    await self._rebuild(generation)
-                    continue
-                self.running += 1
-                waiting = asyncio.wrap_future(future)
-                self._waiting[waiting] = generation
-                try:
-                    run_deadline = loop.time() + time_limit_s if deadline is None else deadline
-                    async with asyncio.timeout_at(run_deadline):
-                        return await waiting
-                except TimeoutError:
-                    log.warning("a task exceeded its time limit; restarting the workers")
-                    await self._rebuild(generation, kill=True)
-                    raise JobTimeoutError(time_limit_s) from None
-                except BrokenProcessPool:
-                    log.warning("a worker process died; restarting the workers, retrying")
-                    await self._rebuild(generation)
-                except asyncio.CancelledError:
-                    if waiting not in self._lost:
-                        raise
-                    # Its workers were replaced while it waited (see _rebuild): retry.
-                finally:
-                    self.running -= 1
-                    self._waiting.pop(waiting, None)
-                    self._lost.discard(waiting)
+            except BrokenProcessPool:
+                log.warning("a worker process died; restarting the workers, retrying")
+                await self._rebuild(generation)
+            except asyncio.CancelledError:
+                if waiting not in self._lost:
+                    raise
+                # Its workers were replaced while it waited (see _rebuild): retry.
             finally:
-                self._slots.release()
+                self.running -= units
+                self._waiting.pop(waiting, None)
+                self._lost.discard(waiting)
         raise PoolUnavailableError("worker processes died twice while running this job")
 
     # -- rebuilding --------------------------------------------------------------------
@@ -488,7 +280,7 @@ class WorkerPool:
         context = multiprocessing.get_context(self._start_method)
         if self._start_method == "forkserver":
             # Workers fork from a server that has imported numpy and the core already.
-            context.set_forkserver_preload([__name__])
+            context.set_forkserver_preload([__name__, *PRELOAD])
         executor = ProcessPoolExecutor(
             max_workers=self.size, mp_context=context, initializer=_initialize_worker
         )
@@ -539,6 +331,83 @@ class WorkerPool:
             if self._broken():
                 with contextlib.suppress(PoolUnavailableError):
                     await self._rebuild(self._generation)
+
+
+class Coalescer(Generic[Item, Arg, T]):
+    """Runs ``fn(items, arg) -> results`` for single items, several items per task under load.
+
+    An item waits in a queue; a dispatcher takes a free worker slot, then everything queued
+    (up to ``max_items``) as one task. With a worker free, an item goes alone and at once;
+    with all busy, the items that pile up meanwhile share the next task. Each item counts as
+    one unit of the pool's capacity. A task of ``k`` items gets ``k × time_limit_s``; if it
+    fails (time limit, workers lost twice), each of its items gets that error.
+    """
+
+    def __init__(
+        self,
+        pool: WorkerPool,
+        fn: Callable[[list[Item], Arg], list[T]],
+        arg: Arg,
+        *,
+        time_limit_s: float,
+        max_items: int,
+    ) -> None:
+        self.pool = pool
+        self._fn = fn
+        self._arg = arg
+        self._time_limit_s = time_limit_s
+        self._max_items = max_items
+        self._queue: deque[tuple[Item, asyncio.Future[T]]] = deque()
+        self._dispatchers = 0
+        self._running: set[asyncio.Task[None]] = set()
+        #: Tasks sent to the workers so far (fewer than the items when they coalesce).
+        self.tasks = 0
+
+    async def run(self, item: Item) -> T:
+        """``fn([item, ...], arg)``'s result for ``item``."""
+        with self.pool.admit():
+            result: asyncio.Future[T] = asyncio.get_running_loop().create_future()
+            self._queue.append((item, result))
+            if self._dispatchers < self.pool.size:
+                self._dispatchers += 1
+                task = asyncio.create_task(self._dispatch(), name="coalescer-dispatch")
+                self._running.add(task)  # the loop keeps only weak references to tasks
+                task.add_done_callback(self._running.discard)
+            return await result
+
+    async def _dispatch(self) -> None:
+        pool = self.pool
+        try:
+            while self._queue:
+                await pool._slots.acquire()
+                try:
+                    batch = [
+                        self._queue.popleft() for _ in range(min(self._max_items, len(self._queue)))
+                    ]
+                    batch = [(item, result) for item, result in batch if not result.done()]
+                    if batch:
+                        await self._run(batch)
+                finally:
+                    pool._slots.release()
+        finally:
+            self._dispatchers -= 1
+
+    async def _run(self, batch: list[tuple[Item, asyncio.Future[T]]]) -> None:
+        items = [item for item, _ in batch]
+        limit = self._time_limit_s * len(items)
+        self.tasks += 1
+        try:
+            results = await self.pool._execute(
+                self._fn, (items, self._arg), limit, None, units=len(items)
+            )
+        except Exception as error:  # PoolError, or a bug in fn: every waiting request gets it
+            for _, result in batch:
+                if not result.done():
+                    result.set_exception(error)
+            return
+        for (_, result), value in zip(batch, results, strict=True):
+            if not result.done():
+                result.set_result(value)
 
 
 def _kill_workers(executor: ProcessPoolExecutor) -> None:

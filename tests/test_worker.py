@@ -1,9 +1,8 @@
-"""The worker pool and its job functions."""
+"""The worker pool: admission, queueing, time limits, rebuilds, retries, draining, coalescing."""
 
 from __future__ import annotations
 
 import asyncio
-import json
 import os
 import signal
 import time
@@ -12,135 +11,20 @@ from typing import Any
 
 import pytest
 
-from service.gcode import GcodeOptions
-from service.geometry import DEFAULT_LIMITS, GeometryError, Limits, Spiral, approximate
+from service.geometry import DEFAULT_LIMITS
+from service.jobs import Encoded, Job, ParametersSpec, approximate_chunk, approximate_one
 from service.worker import (
-    ControlPointsSpec,
-    Encoded,
-    Job,
+    Coalescer,
     JobTimeoutError,
-    ParametersSpec,
     PoolUnavailableError,
     QueueFullError,
     WorkerPool,
-    approximate_chunk,
-    approximate_one,
     chunk_sizes,
-    encode,
 )
 
 PAPER = ParametersSpec(
     start=(1.5, 3.0), start_tangent=(1.0, 0.0), turn_angle_deg=51.34, end_curvature=0.41574
 )
-
-
-def _paper_spiral() -> Spiral:
-    return Spiral.from_parameters((1.5, 3.0), (1.0, 0.0), 51.34, 0.41574)
-
-
-# -- job functions -----------------------------------------------------------------------
-
-
-def test_encode_writes_every_field_of_every_segment() -> None:
-    spline = approximate(_paper_spiral(), 1e-3)
-    encoded = encode(spline, None)
-    body = json.loads(encoded.body)
-    c = spline.columns
-    assert (encoded.arc_count, encoded.line_count) == (12, 0)
-    for i, segment in enumerate(body["segments"]):
-        assert segment["type"] == "arc"
-        assert segment["start"] == c.start[i].tolist()
-        assert segment["end"] == c.end[i].tolist()
-        assert segment["center"] == c.center[i].tolist()
-        assert segment["radius"] == c.radius[i]
-        assert segment["sweep_rad"] == c.sweep_rad[i]
-        assert segment["direction"] == ("ccw" if c.sweep_rad[i] > 0 else "cw")
-        for name in (
-            "start_angle_rad",
-            "length",
-            "u_start",
-            "u_end",
-            "max_deviation",
-            "u_at_max_deviation",
-        ):
-            assert segment[name] == getattr(c, name)[i]
-    stats = body["stats"]
-    assert stats["segment_count"] == 12
-    assert stats["tolerance"] == 1e-3
-    assert stats["strategy"] == "subdivide"
-    assert stats["min_radius"] == spline.stats.min_radius
-    assert body["gcode"] is None
-
-
-def test_lines_carry_no_centre_or_radius() -> None:
-    # A turn of 1e-9° is numerically straight: the core answers with lines.
-    spiral = Spiral.from_parameters((0.0, 0.0), (1.0, 0.0), 1e-9, 1.0)
-    spline = approximate(spiral, spiral.chord * 1e-3)
-    body = json.loads(encode(spline, None).body)
-    assert body["stats"]["line_count"] == len(body["segments"]) > 0
-    assert body["stats"]["min_radius"] is None
-    assert body["stats"]["max_radius"] is None
-    for segment in body["segments"]:
-        assert set(segment) == {
-            "type",
-            "start",
-            "end",
-            "length",
-            "u_start",
-            "u_end",
-            "max_deviation",
-            "u_at_max_deviation",
-        }
-        assert segment["type"] == "line"
-
-
-def test_approximate_one_returns_the_body_or_the_error() -> None:
-    ok = approximate_one(Job(PAPER, 0.1), DEFAULT_LIMITS)
-    assert isinstance(ok, Encoded)
-    assert ok.arc_count == 4
-    floor = approximate_one(Job(PAPER, 1e-14), DEFAULT_LIMITS)
-    assert isinstance(floor, GeometryError)
-    assert floor.kind == "tolerance_floor"
-    capped = approximate_one(Job(PAPER, 1e-5), Limits(max_segments=10))
-    assert isinstance(capped, GeometryError)
-    assert capped.kind == "segment_limit"
-    assert capped.limit == 10
-    bad = approximate_one(
-        Job(ControlPointsSpec(((0, 0), (1, 0), (3, 0), (4, 1))), 0.1), DEFAULT_LIMITS
-    )
-    assert isinstance(bad, GeometryError)
-    assert bad.field == "control_points"
-
-
-def test_approximate_one_adds_the_program_when_asked() -> None:
-    result = approximate_one(Job(PAPER, 0.1, gcode=GcodeOptions(feed_rate=200.0)), DEFAULT_LIMITS)
-    assert isinstance(result, Encoded)
-    program = json.loads(result.body)["gcode"]
-    assert isinstance(program, str)
-    assert "M2" in program
-
-
-def test_a_chunk_answers_each_job_in_order_like_single_jobs() -> None:
-    jobs = [
-        Job(PAPER, 0.1),
-        Job(PAPER, 1e-14),
-        Job(PAPER, 0.01, "fewest-arcs"),
-        Job(ControlPointsSpec(((0, 0), (1, 0), (3, 0), (4, 1))), 0.1),
-        Job(PAPER, 1e-4),
-        Job(PAPER, 1e-3, "fewest-arcs"),
-    ]
-    results = approximate_chunk(jobs, DEFAULT_LIMITS)
-    assert len(results) == len(jobs)
-    for job, result in zip(jobs, results, strict=True):
-        single = approximate_one(job, DEFAULT_LIMITS)
-        assert type(result) is type(single)
-        if isinstance(result, Encoded):
-            assert isinstance(single, Encoded)
-            assert (result.arc_count, result.line_count) == (single.arc_count, single.line_count)
-            assert json.loads(result.body)["stats"]["strategy"] == job.strategy
-        else:
-            assert isinstance(single, GeometryError)
-            assert (result.field, result.kind) == (single.field, single.kind)
 
 
 @pytest.mark.parametrize(
@@ -158,8 +42,6 @@ def test_chunks_are_few_even_and_not_too_small(
 ) -> None:
     assert chunk_sizes(jobs, workers, min_jobs) == sizes
 
-
-# -- the pool ----------------------------------------------------------------------------
 
 pool_test = pytest.mark.anyio
 
@@ -286,3 +168,49 @@ async def test_draining_finishes_in_flight_work_then_stops() -> None:
     assert not pool.ready
     with pytest.raises(PoolUnavailableError):
         await pool.run(os.getpid, time_limit_s=10)
+
+
+@pool_test
+async def test_an_idle_pool_runs_a_single_job_alone_and_at_once(pool: WorkerPool) -> None:
+    coalescer = Coalescer(pool, approximate_chunk, DEFAULT_LIMITS, time_limit_s=10, max_items=8)
+    result = await coalescer.run(Job(PAPER, 1e-3))
+    assert isinstance(result, Encoded)
+    assert result.arc_count == 12
+    assert coalescer.tasks == 1
+
+
+@pool_test
+async def test_jobs_that_queue_up_share_worker_tasks() -> None:
+    pool = WorkerPool(1, 64)
+    await pool.start()
+    try:
+        coalescer = Coalescer(pool, approximate_chunk, DEFAULT_LIMITS, time_limit_s=10, max_items=8)
+        tolerances = [10.0 ** -(1 + i % 5) for i in range(20)]
+        results = await asyncio.gather(*(coalescer.run(Job(PAPER, t)) for t in tolerances))
+        table = {0.1: 4, 0.01: 8, 0.001: 12, 0.0001: 26, 1e-05: 54}
+        counts = [r.arc_count for r in results if isinstance(r, Encoded)]
+        assert counts == [table[t] for t in tolerances]
+        # All 20 queue before the one dispatcher runs: tasks of 8, 8 and 4.
+        assert coalescer.tasks == 3
+        assert pool.in_flight == 0
+    finally:
+        await pool.drain(10)
+
+
+@pool_test
+async def test_a_coalesced_task_that_fails_fails_each_of_its_jobs() -> None:
+    pool = WorkerPool(1, 64)
+    await pool.start()
+    try:
+        coalescer = Coalescer(
+            pool, approximate_chunk, DEFAULT_LIMITS, time_limit_s=1e-4, max_items=8
+        )
+        outcomes = await asyncio.gather(
+            *(coalescer.run(Job(PAPER, 1e-9)) for _ in range(5)), return_exceptions=True
+        )
+        assert all(isinstance(o, JobTimeoutError) for o in outcomes), outcomes
+        assert pool.rebuilds >= 1
+        single = await pool.run(approximate_one, Job(PAPER, 0.1), DEFAULT_LIMITS, time_limit_s=10)
+        assert isinstance(single, Encoded)
+    finally:
+        await pool.drain(10)

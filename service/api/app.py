@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import random
+import uuid
 from collections.abc import AsyncIterator
 from contextlib import asynccontextmanager
 
@@ -9,8 +11,9 @@ from asgi_correlation_id import CorrelationIdMiddleware
 from fastapi import FastAPI
 from fastapi.routing import APIRoute
 
+from service.jobs import approximate_chunk
 from service.settings import Settings, get_settings
-from service.worker import WorkerPool
+from service.worker import Coalescer, WorkerPool
 
 from . import approximate, health, metrics, preview
 from .errors import RawJSONResponse, install_error_handlers
@@ -27,6 +30,15 @@ Approximates planar cubic Bézier spirals by G1 arc splines within a tolerance
 J. Comput. Appl. Math. 75 (1996) 47–56), for CNC tool paths.
 
 Every error is RFC 9457 problem details (`application/problem+json`)."""
+
+
+def request_id() -> str:
+    """A random UUID4 as 32 hex digits, for requests that bring no ``X-Request-ID``.
+
+    From the ``random`` module, not ``os.urandom`` (a system call per request): the id
+    identifies a request in logs, it guards nothing.
+    """
+    return uuid.UUID(int=random.getrandbits(128), version=4).hex
 
 
 def operation_id(route: APIRoute) -> str:
@@ -49,13 +61,20 @@ def create_app(settings: Settings | None = None) -> FastAPI:
         )
         await pool.start()
         runtime.pool = pool
+        runtime.coalescer = Coalescer(
+            pool,
+            approximate_chunk,
+            config.limits,
+            time_limit_s=config.job_time_limit_s,
+            max_items=config.coalesce_max_jobs,
+        )
         try:
             yield
         finally:
             # Uvicorn has already waited for in-flight requests (graceful shutdown); this
             # waits for any task still running, then stops the workers.
             await pool.drain(config.drain_timeout_s)
-            runtime.pool = None
+            runtime.pool = runtime.coalescer = None
 
     app = FastAPI(
         title="arcspline",
@@ -75,5 +94,5 @@ def create_app(settings: Settings | None = None) -> FastAPI:
         BodyLimitMiddleware, max_body_bytes=runtime.settings.max_body_bytes, metrics=runtime.metrics
     )
     app.add_middleware(MetricsMiddleware, metrics=runtime.metrics)
-    app.add_middleware(CorrelationIdMiddleware, header_name="X-Request-ID")
+    app.add_middleware(CorrelationIdMiddleware, header_name="X-Request-ID", generator=request_id)
     return app

@@ -9,15 +9,8 @@ import orjson
 from fastapi import APIRouter
 from pydantic import TypeAdapter, ValidationError
 
-from service.worker import (
-    Encoded,
-    Job,
-    JobResult,
-    PoolError,
-    approximate_chunk,
-    approximate_one,
-    chunk_sizes,
-)
+from service.jobs import Encoded, Job, JobResult, approximate_chunk
+from service.worker import PoolError, chunk_sizes
 
 from .errors import (
     ProblemError,
@@ -28,9 +21,9 @@ from .errors import (
     problem_responses,
     validation_problem,
 )
-from .jobs import job_problem, to_job
 from .runtime import Runtime, RuntimeDep
 from .schemas import ApproximateRequest, ApproximateResponse, BatchRequest, BatchResponse
+from .translate import job_problem, to_job
 
 router = APIRouter(tags=["approximation"])
 
@@ -46,11 +39,8 @@ _JOB_ADAPTER: TypeAdapter[ApproximateRequest] = TypeAdapter(ApproximateRequest)
 )
 async def approximate(body: ApproximateRequest, runtime: RuntimeDep) -> RawJSONResponse:
     """The arc spline of one spiral within the tolerance, its statistics, and G-code if asked."""
-    job = to_job(body, ["body"])
-    settings = runtime.settings
-    result = await runtime.running_pool().run(
-        approximate_one, job, settings.limits, time_limit_s=settings.job_time_limit_s
-    )
+    # Jobs that arrive while every worker is busy share a worker task (see Coalescer).
+    result = await runtime.singles().run(to_job(body, ["body"]))
     if isinstance(result, Encoded):
         runtime.metrics.job_ok("approximate", result.arc_count, result.line_count)
         return RawJSONResponse(result.body)

@@ -20,12 +20,12 @@ from starlette.responses import Response
 
 from service.geometry import ArcSpline, GeometryError, Spiral
 from service.geometry.types import FloatArray
-from service.worker import preview_spline
+from service.jobs import preview_spline
 
 from .errors import ProblemError, problem_responses
-from .jobs import job_problem, to_job
 from .runtime import RuntimeDep
 from .schemas import ApproximateRequest
+from .translate import job_problem, to_job
 
 router = APIRouter(tags=["approximation"])
 

@@ -7,19 +7,22 @@ from typing import Annotated
 
 from fastapi import Depends, Request
 
+from service.geometry import Limits
+from service.jobs import Job, JobResult
 from service.settings import Settings
-from service.worker import PoolUnavailableError, WorkerPool
+from service.worker import Coalescer, PoolUnavailableError, WorkerPool
 
 from .metrics import Metrics
 
 
 @dataclass(eq=False)
 class Runtime:
-    """One per app; ``pool`` exists between lifespan startup and shutdown."""
+    """One per app; ``pool`` (and ``coalescer``) exist between lifespan startup and shutdown."""
 
     settings: Settings
     metrics: Metrics = field(init=False)
     pool: WorkerPool | None = None
+    coalescer: Coalescer[Job, Limits, JobResult] | None = None
 
     def __post_init__(self) -> None:
         self.metrics = Metrics(lambda: self.pool)
@@ -29,8 +32,15 @@ class Runtime:
             raise PoolUnavailableError("the worker pool is not running")
         return self.pool
 
+    def singles(self) -> Coalescer[Job, Limits, JobResult]:
+        """Where single /v1/approximate jobs go."""
+        if self.coalescer is None:
+            raise PoolUnavailableError("the worker pool is not running")
+        return self.coalescer
 
-def get_runtime(request: Request) -> Runtime:
+
+async def get_runtime(request: Request) -> Runtime:
+    # async: FastAPI would run a plain function in a worker thread, a costly hop per request.
     runtime: Runtime = request.app.state.runtime
     return runtime
 

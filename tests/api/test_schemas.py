@@ -15,7 +15,7 @@ from service.api.schemas import (
     SpiralParameters,
 )
 from service.geometry import STRATEGIES, Spiral, approximate
-from service.worker import encode
+from service.jobs import Encoded, encode
 
 ADAPTER: TypeAdapter[ApproximateRequest] = TypeAdapter(ApproximateRequest)
 
@@ -78,7 +78,9 @@ def test_the_response_model_accepts_what_the_worker_encodes(
 ) -> None:
     spiral = Spiral.from_parameters((1.5, 3.0), (1.0, 0.0), 51.34, 0.41574)
     spline = approximate(spiral, tolerance, strategy)  # type: ignore[arg-type]
-    body = json.loads(encode(spline, "G0 X0 Y0\nM2\n").body)
+    encoded = encode(spline, "G0 X0 Y0\nM2\n")
+    assert isinstance(encoded, Encoded)
+    body = json.loads(encoded.body)
     model = ApproximateResponse.model_validate(body)
     assert model.stats.arc_count == spline.stats.arc_count
     assert len(model.segments) == len(spline)

@@ -4,6 +4,7 @@ during a burst, SIGTERM during load, a full queue, a time limit."""
 from __future__ import annotations
 
 import asyncio
+import math
 import os
 import signal
 import time
@@ -37,6 +38,15 @@ CLIENT_TIMEOUT_S = 120.0
 def _client(server: Server) -> httpx.AsyncClient:
     limits = httpx.Limits(max_connections=200, max_keepalive_connections=200)
     return httpx.AsyncClient(base_url=server.url, timeout=CLIENT_TIMEOUT_S, limits=limits)
+
+
+def _same_stats(a: dict[str, Any], b: dict[str, Any]) -> bool:
+    """Equal statistics; floats to 1e-12 (jobs that share a worker task go through the
+    core's vectorised path, which may round the last bit differently)."""
+    return a.keys() == b.keys() and all(
+        math.isclose(a[k], b[k], rel_tol=1e-12) if isinstance(a[k], float) else a[k] == b[k]
+        for k in a
+    )
 
 
 async def _until(condition: Callable[[], Awaitable[bool]], timeout_s: float = 60.0) -> None:
@@ -119,14 +129,14 @@ async def test_killing_a_worker_during_a_burst(server: Server) -> None:
         assert statuses.count(200) > 0
         for response in responses:
             if response.status_code == 200:
-                assert response.json()["stats"] == expected
+                assert _same_stats(response.json()["stats"], expected)
             else:
                 assert response.headers["content-type"] == "application/problem+json"
         await _until(lambda: _ready(client))
         assert (await _metrics(client))["arcspline_pool_rebuilds_total"] > rebuilds_before
         assert workers[0] not in server.worker_pids()
         after = await client.post("/v1/approximate", json=HEAVY)
-        assert after.json()["stats"] == expected
+        assert _same_stats(after.json()["stats"], expected)
 
 
 async def test_sigterm_drains_in_flight_requests_and_exits_0(tmp_path: Path) -> None:

@@ -6,7 +6,7 @@ from typing import Any
 
 from service.gcode import GcodeError, GcodeOptions
 from service.geometry import GeometryError
-from service.worker import ControlPointsSpec, Job, ParametersSpec, SpiralSpec
+from service.jobs import ControlPointsSpec, Job, ParametersSpec, SpiralSpec
 
 from .errors import Loc, ProblemError, gcode_problem, geometry_problem
 from .schemas import ApproximateRequest, SpiralParameters
