@@ -504,11 +504,11 @@ def _search_many(
     # target, the proof tries the longest fit and a ladder of slightly shorter pieces: the
     # first rungs for every row, the rest only where those fail.
     # The interpolated crossing goes first: the proof, not the screen, decides.
-    first_u = np.stack([u_star, u_top], axis=1)
+    first_u = np.stack([u_star, u_top, u0 + (u_top - u0) * LADDER[0]], axis=1)
     found, chosen, devs = _prove(k, m, u0, tol, first_u, lam_top, has)
     redo = np.flatnonzero(has & ~found)
     if redo.size:
-        more_u = u0[redo, None] + (u_top - u0)[redo, None] * LADDER[None, :]
+        more_u = u0[redo, None] + (u_top - u0)[redo, None] * LADDER[None, 1:]
         f2, c2, d2 = _prove(k[redo], m[redo], u0[redo], tol[redo], more_u, lam_top[redo], has[redo])
         found[redo] = f2
         for name in _Biarcs.__slots__:

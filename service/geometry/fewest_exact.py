@@ -281,19 +281,23 @@ def _is_graph(
 
 def _cascade_roots(coeffs: FloatArray, lo: FloatArray, hi: FloatArray) -> FloatArray:
     """Every root in ``[lo, hi]`` of each row's polynomial (ascending ``coeffs``, degree 5),
-    plus the ends and the roots of its derivatives: shape ``(n, 7)``, sorted per row.
+    plus the ends and the roots of its derivatives, sorted per row (repeats moved to the end).
 
-    Each level adds one (possibly duplicate) point per row, see the module text.
+    Each level adds at most one point per interval, see the module text.
     """
     derivatives = [coeffs]
     for _ in range(5):
         c = derivatives[-1]
         derivatives.append(c[:, 1:] * np.arange(1, c.shape[1]))
     points = np.stack([lo, hi], axis=1)
-    for level in _LEVELS:
+    # h⁽⁴⁾ = 120·c5·u + 24·c4 vanishes only at u = 0 when c4 = 0 (always, for this quintic),
+    # so on pieces with lo ≥ 0 it has no interior root and the level can be skipped.
+    skip_top = bool(np.all(coeffs[:, 4] == 0.0)) and bool(np.all(lo >= 0.0))
+    for level in _LEVELS[1:] if skip_top else _LEVELS:
         c = derivatives[level]
-        a, b = points[:, :-1], points[:, 1:]
-        fa, fb = _horner(c, a), _horner(c, b)
+        f = _horner(c, points)
+        a, fa, fb = points[:, :-1], f[:, :-1], f[:, 1:]
+        b = points[:, 1:]
         bracketed = ((fa < 0.0) & (fb > 0.0)) | ((fa > 0.0) & (fb < 0.0))
         roots = a.copy()
         rows, cols = np.nonzero(bracketed)
@@ -315,8 +319,23 @@ def _cascade_roots(coeffs: FloatArray, lo: FloatArray, hi: FloatArray) -> FloatA
             roots[rows, cols] = bracketed_newton(fn, a_w, b_w, secant)
         # A monotone piece holds at most one root, so one new point per level suffices only
         # per piece; keep all pieces' roots (duplicates of ``a`` where there is none).
-        points = np.sort(np.concatenate([points, roots], axis=1), axis=1)
+        points = _distinct(np.concatenate([points, roots], axis=1), hi)
     return points
+
+
+def _distinct(points: FloatArray, hi: FloatArray) -> FloatArray:
+    """``points`` sorted per row with repeated values moved to the end as copies of ``hi``
+    (zero-width intervals, which never bracket a root), and columns that are such copies in
+    every row dropped. Each row keeps the same set of values, so its roots do not depend on
+    the other rows."""
+    points = np.sort(points, axis=1)
+    repeat = np.zeros(points.shape, dtype=bool)
+    repeat[:, 1:] = points[:, 1:] == points[:, :-1]
+    points = np.sort(np.where(repeat, np.inf, points), axis=1)
+    width = int((~repeat).sum(axis=1).max())
+    points = points[:, :width]
+    result: FloatArray = np.where(np.isinf(points), hi[:, None], points)
+    return result
 
 
 def _horner(c: FloatArray, x: FloatArray) -> FloatArray:
