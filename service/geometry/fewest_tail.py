@@ -39,6 +39,7 @@ _GRID = (6, 3, 7)
 #: spirals every triarc that was proven started below 1.9 times the tolerance).
 _GOOD = 0.97
 _HOPELESS = 2.5
+_HOPELESS_DECAY = 0.6
 
 
 @dataclass(frozen=True, slots=True)
@@ -175,9 +176,10 @@ def best_triarcs(
     width = np.stack([span * 0.07, tol * 0.5, np.full(n, 0.1)], axis=1)
     steps = np.linspace(-1.0, 1.0, _AXIS)
     cube = np.stack([a.ravel() for a in np.meshgrid(steps, steps, steps, indexing="ij")], axis=1)
-    for _ in range(_ROUNDS):
+    for round_ in range(_ROUNDS):
         # Refine only rows still above the target and not hopeless (see the constants).
-        act = np.flatnonzero((best_score > _GOOD * tol) & (best_score < _HOPELESS * tol))
+        hopeless = 1.0 + (_HOPELESS - 1.0) * _HOPELESS_DECAY**round_
+        act = np.flatnonzero((best_score > _GOOD * tol) & (best_score < hopeless * tol))
         if act.size == 0:
             break
         grid = centre[act, None, :] + width[act, None, :] * cube[None, :, :]
