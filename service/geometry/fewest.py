@@ -160,24 +160,6 @@ def _biarcs(
     return _Biarcs(u1, lam, phi0, psi, phi1, kappa0, kappa1, gx, gy, split, ok)
 
 
-def _screen(
-    k: Float, m: Float, u0: Float, b: _Biarcs, samples: FloatArray = _SAMPLE_T
-) -> FloatArray:
-    """Largest sampled radial distance of each candidate biarc (a lower bound), inf if invalid."""
-    k, m, u0 = (v[:, None] for v in _rows(k, m, u0, like=b.u1))
-    split = np.where(b.ok, b.split, 0.5 * (u0[:, 0] + b.u1))[:, None]
-    ax, ay = canonical.point(k, m, u0)
-    t = samples[None, :]
-    ua = u0 + (split - u0) * t
-    ub = split + (b.u1[:, None] - split) * t
-    n0x, n0y = -np.sin(b.phi0)[:, None], np.cos(b.phi0)[:, None]
-    n1x, n1y = -np.sin(b.psi)[:, None], np.cos(b.psi)[:, None]
-    e0 = screen_radial(k, m, ax, ay, n0x, n0y, b.kappa0[:, None], ua).max(axis=1)
-    e1 = screen_radial(k, m, b.gx[:, None], b.gy[:, None], n1x, n1y, b.kappa1[:, None], ub)
-    worst = np.maximum(e0, e1.max(axis=1))
-    return np.where(b.ok, worst, np.inf)
-
-
 def _verify(k: Float, m: Float, u0: Float, b: _Biarcs, tol: Float) -> tuple[FloatArray, ...]:
     """Exact deviations of both arcs of each candidate: ``(dev0, u0_at, dev1, u1_at)``."""
     n = b.u1.shape[0]
@@ -331,15 +313,34 @@ def _evaluate(
     screen_tol: FloatArray,
     samples: FloatArray,
 ) -> _Round:
-    r, w = grid.shape
-    n_lam = lams.shape[1]
-    uu = np.broadcast_to(grid[:, :, None], (r, w, n_lam)).ravel()
-    ll = np.broadcast_to(lams[:, None, :], (r, w, n_lam)).ravel()
-    kk, mm, u00 = (np.repeat(v, w * n_lam) for v in (k, m, u0))
+    # Broadcast (rows, u1, λ): what depends on u1 alone is computed once per grid value.
+    col = (slice(None), None, None)
     with np.errstate(invalid="ignore", divide="ignore"):
-        b = _biarcs(kk, mm, u00, uu, ll, exact=False)
-        dev = _screen(kk, mm, u00, b, samples).reshape(r, w, n_lam)
+        b = _biarcs(k[col], m[col], u0[col], grid[:, :, None], lams[:, None, :], exact=False)
+        dev = _screen_grid(k, m, u0, b, samples)
     return _Round(grid, lams, dev, dev <= screen_tol[:, None, None])
+
+
+def _screen_grid(
+    k: FloatArray, m: FloatArray, u0: FloatArray, b: _Biarcs, samples: FloatArray
+) -> FloatArray:
+    """Largest sampled radial distance of each candidate biarc (a lower bound on its
+    deviation), inf if invalid; candidates broadcast over ``(rows, u1, λ)``, samples on a
+    fourth axis."""
+    k4, m4, u04 = (v[:, None, None, None] for v in (k, m, u0))
+    ok = np.broadcast_to(b.ok, b.psi.shape)
+    split = np.where(ok, b.split, 0.5 * (u0[:, None, None] + b.u1))[..., None]
+    ax, ay = canonical.point(k4, m4, u04)
+    ua = u04 + (split - u04) * samples
+    ub = split + (b.u1[..., None] - split) * samples
+    n0x, n0y = -np.sin(b.phi0)[..., None], np.cos(b.phi0)[..., None]
+    n1x, n1y = -np.sin(b.psi)[..., None], np.cos(b.psi)[..., None]
+    e0 = screen_radial(k4, m4, ax, ay, n0x, n0y, b.kappa0[..., None], ua).max(axis=-1)
+    e1 = screen_radial(
+        k4, m4, b.gx[..., None], b.gy[..., None], n1x, n1y, b.kappa1[..., None], ub
+    ).max(axis=-1)
+    result: FloatArray = np.where(ok, np.maximum(e0, e1), np.inf)
+    return result
 
 
 def _top(rnd: _Round) -> tuple[FloatArray, FloatArray, BoolArray]:
