@@ -24,7 +24,7 @@ PAPER = Spiral.from_parameters(
     start=(1.5, 3.0), start_tangent=(1.0, 0.0), turn_angle_deg=51.34, end_curvature=0.41574
 )
 TOLERANCES = (0.1, 0.01, 1e-3, 1e-4, 1e-5)
-REPEATS = 5
+REPEATS = 15
 
 
 def _best_time(fn: object, repeats: int = REPEATS) -> float:

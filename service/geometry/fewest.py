@@ -74,7 +74,7 @@ HINT_STEPS = 8
 HINT_LAMBDA = 0.12
 HINT_LAMBDAS = 7
 #: Refining rounds between the longest fit and the next grid value: ``u1`` points, ``λ`` points.
-REFINE_ROUNDS = 3
+REFINE_ROUNDS = 2
 REFINE = 6
 REFINE_LAMBDAS = 5
 LAMBDA_MARGIN = 1e-3
