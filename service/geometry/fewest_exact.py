@@ -340,9 +340,10 @@ def _distinct(points: FloatArray, hi: FloatArray) -> FloatArray:
 
 def _horner(c: FloatArray, x: FloatArray) -> FloatArray:
     """Ascending coefficients ``c`` (rows, degree+1) at ``x`` (rows,) or (rows, j)."""
-    extra = x.ndim - 1
-    result = np.zeros_like(x)
-    for j in range(c.shape[1] - 1, -1, -1):
-        cj = c[:, j].reshape((-1,) + (1,) * extra)
-        result = result * x + cj
-    return result
+    columns = c.T.reshape(c.shape[::-1] + (1,) * (x.ndim - 1))
+    result = np.broadcast_to(columns[-1], x.shape).copy()
+    for cj in columns[-2::-1]:
+        result *= x
+        result += cj
+    out: FloatArray = result
+    return out
