@@ -13,9 +13,16 @@ Each arc's chord runs along the mean of its end directions, so the chord lengths
 ``G = A0 + L0·e((φ0 + ψ)/2)``; curvatures are ``κ = 2·sin(turn/2)/L``. ``ψ`` is searched as
 ``χ − β + λ(α + β)``, ``λ ∈ (0, 1)``, ``α = χ − φ0``, ``β = φ1 − χ``.
 
-**Search, then proof.** Candidates ``(u1, λ)`` are screened on a grid by the radial distance at
-a few samples per arc — a *lower* bound on the deviation, so it only discards candidates that
-certainly fail — refined in three rounds, and the best are then verified by
+**Search, then proof.** Candidates ``(u1, λ)`` are screened by the radial distance at a few
+samples per arc (an estimate from below of the deviation; it only discards candidates). Spans
+and join parameters change slowly along a spiral, so each step starts from the previous one:
+a grid of ``u1`` within ±0.4 octave of the previous span against ``λ`` within ±0.12 of the
+previous ``λ`` (the first piece scans a half-octave grid over ``(u0, 1]`` with three ``λ``, and
+a piece to the spiral's end gets a finer ``λ`` scan because it ends the walk). Two rounds then
+refine the bracket between the longest fit and the next value tried, with ``λ`` narrowing
+around the best, and the screened deviations either side of the boundary are interpolated to
+where they reach the target. Only then is anything proven: the interpolated end, the longest
+screened fit and, where both fail, a ladder of slightly shorter pieces are verified by
 :func:`service.geometry.fewest_exact.arc_deviation`, which computes each arc's two-sided
 deviation exactly (derivative cascade on the quintic ``(Q − C)·Q'``, plus the polar-graph
 conditions that make the radial distance the Hausdorff distance; see that module). Only

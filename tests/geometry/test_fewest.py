@@ -184,3 +184,23 @@ def test_exact_arc_deviation_matches_dense_sampling(
     slack = 64 * np.finfo(float).eps * (1.0 / kappa + 4.0)
     assert got.value[0] >= sampled - slack
     assert got.value[0] <= sampled * (1 + 1e-6) + slack
+
+
+def test_screening_distance_is_the_radial_distance() -> None:
+    # The screen's one-square-root form |ν| / (1 + √(1 + κν)) must equal |‖Q − C‖ − r|, here
+    # computed directly from the circle's centre for random circles and spiral points.
+    from service.geometry.fewest_exact import screen_radial
+
+    rng = np.random.default_rng(3)
+    n = 5000
+    theta = rng.uniform(0.01, 1.55, n)
+    k, m = 1.2 * np.cos(theta) ** 2 - 1.0, 1.2 * np.cos(theta) * np.sin(theta)
+    u = rng.uniform(0.0, 1.0, n)
+    jx, jy, phi = rng.uniform(-1.0, 4.0, n), rng.uniform(-1.0, 2.0, n), rng.uniform(-3, 3, n)
+    kappa = rng.choice([-1.0, 1.0], n) * 10 ** rng.uniform(-3.0, 1.0, n)
+    nx, ny = -np.sin(phi), np.cos(phi)
+    got = screen_radial(k, m, jx, jy, nx, ny, kappa, u)
+    qx, qy = 3 * u + k * u**3, m * u**3
+    want = np.abs(np.hypot(qx - (jx + nx / kappa), qy - (jy + ny / kappa)) - 1 / np.abs(kappa))
+    slack = 64 * np.finfo(float).eps * (1 / np.abs(kappa) + 10)
+    assert np.all(np.abs(got - want) <= 1e-9 * want + slack)
