@@ -92,57 +92,86 @@ class Frames:
 def segment_columns(kept: Kept, k: FloatArray, m: FloatArray, frames: Frames) -> SegmentColumns:
     """Two rows per kept biarc (arc 0, then arc 1), in the order of ``kept``."""
     b, d, i = kept.biarcs, kept.deviation, kept.spiral
+    n = i.shape[0]
     kk, mm = k[i], m[i]
     rows = frames.take(i)  # per-row frames, gathered once for all the mappings below
-    a0 = rows.point(ALL, *canonical.point(kk, mm, b.u0))
-    a1 = rows.point(ALL, *canonical.point(kk, mm, b.u1))
-    join = a0 + rows.vector(ALL, b.join_dx, b.join_dy)
+    scale = rows.scale
+    # The five canonical vectors Q(u0), Q(u1), G − A0 and the two radius vectors r·N mapped
+    # in one stacked call (elementwise the same arithmetic as five separate mappings).
+    q0x, q0y = canonical.point(kk, mm, b.u0)
+    q1x, q1y = canonical.point(kk, mm, b.u1)
+    r0, r1 = b.radius0, b.radius1
+    sin01, cos01 = (
+        np.sin(np.array([b.phi0_rad, b.phi1_rad])),
+        np.cos(np.array([b.phi0_rad, b.phi1_rad])),
+    )
+    world = rows.vector(
+        ALL,
+        np.array([q0x, q1x, b.join_dx, -(r0 * sin01[0]), -(r1 * sin01[1])]),
+        np.array([q0y, q1y, b.join_dy, r0 * cos01[0], r1 * cos01[1]]),
+    )
+    a0 = rows.origin + world[0]
+    a1 = rows.origin + world[1]
+    join = a0 + world[2]
     # Pin the spiral's own end points: u = 0 maps to B0 exactly, u = 1 to the stored B3.
     at_end = b.u1 == 1.0
     a1[at_end] = rows.end_point[at_end]
-    scale = rows.scale
+    centre0 = a0 + world[3]
+    centre1 = a1 + world[4]
 
-    def interleave(first: npt.NDArray[np.generic], second: npt.NDArray[np.generic]) -> FloatArray:
-        out = np.empty((2 * first.shape[0], *first.shape[1:]), dtype=np.result_type(first))
+    def interleave(first: FloatArray, second: FloatArray) -> FloatArray:
+        out = np.empty((2 * first.shape[0], *first.shape[1:]))
         out[0::2], out[1::2] = first, second
         return out
 
-    def normal(phi: FloatArray) -> tuple[FloatArray, FloatArray]:
-        return -np.sin(phi), np.cos(phi)
-
-    centre0 = a0 + rows.vector(ALL, *(b.radius0 * n for n in normal(b.phi0_rad)))
-    centre1 = a1 + rows.vector(ALL, *(b.radius1 * n for n in normal(b.phi1_rad)))
-    sweep = interleave(b.alpha_rad, b.beta_rad)
-    mirror = interleave(rows.mirror, rows.mirror)
-    radius = interleave(scale * b.radius0, scale * b.radius1)
+    # Every per-arc column pair (arc 0, arc 1) interleaved by one copy: shape (columns, 2n).
+    angles = rows.angle(ALL, np.array([b.phi0_rad, b.chord_rad]) - 0.5 * np.pi)
+    pairs = (
+        np.array(
+            [
+                [b.alpha_rad, b.beta_rad],
+                [rows.mirror, rows.mirror],
+                [scale * r0, scale * r1],
+                [angles[0], angles[1]],
+                [scale * d.arc0, scale * d.arc1],
+                [b.u0, d.split],
+                [d.split, b.u1],
+                [d.u_arc0, d.u_arc1],
+            ]
+        )
+        .transpose(0, 2, 1)
+        .reshape(8, 2 * n)
+    )
+    sweep, mirror, radius, start_angle, max_dev = pairs[0], pairs[1], pairs[2], pairs[3], pairs[4]
     start = interleave(a0, join)
     end = interleave(join, a1)
     is_arc = sweep > FLAT_SWEEP_RAD
     length = radius * sweep
-    if not is_arc.all():
+    signed_sweep = mirror * sweep
+    all_arcs = np.count_nonzero(is_arc) == is_arc.size
+    centre = interleave(centre0, centre1)
+    if not all_arcs:
         chord = end - start
         length = np.where(is_arc, length, np.hypot(chord[:, 0], chord[:, 1]))
-    centre = np.where(is_arc[:, None], interleave(centre0, centre1), 0.5 * (start + end))
-    start_angle = interleave(
-        rows.angle(ALL, b.phi0_rad - 0.5 * np.pi), rows.angle(ALL, b.chord_rad - 0.5 * np.pi)
-    )
-    max_dev = interleave(scale * d.arc0, scale * d.arc1)
-    if not is_arc.all():
+        centre = np.where(is_arc[:, None], centre, 0.5 * (start + end))
         flat = _flat_deviation(kept, k, m, is_arc) * np.repeat(scale, 2)
         max_dev = np.where(is_arc, max_dev, flat)
+        radius = np.where(is_arc, radius, np.inf)
+        start_angle = np.where(is_arc, start_angle, 0.0)
+        signed_sweep = np.where(is_arc, signed_sweep, 0.0)
     return SegmentColumns(
         is_arc=is_arc,
         start=start,
         end=end,
         center=centre,
-        radius=np.where(is_arc, radius, np.inf),
-        start_angle_rad=np.where(is_arc, start_angle, 0.0),
-        sweep_rad=np.where(is_arc, mirror * sweep, 0.0),
+        radius=radius,
+        start_angle_rad=start_angle,
+        sweep_rad=signed_sweep,
         length=length,
-        u_start=interleave(b.u0, d.split),
-        u_end=interleave(d.split, b.u1),
+        u_start=pairs[5],
+        u_end=pairs[6],
         max_deviation=max_dev,
-        u_at_max_deviation=interleave(d.u_arc0, d.u_arc1),
+        u_at_max_deviation=pairs[7],
     )
 
 
@@ -208,6 +237,8 @@ def _stats(
     tolerances: FloatArray,
 ) -> list[SplineStats]:
     """Per-spline statistics by segmented reductions over the batch columns."""
+    if counts.size == 1 and columns.is_arc.size:
+        return [_stats_one(columns, spirals, float(tolerances[0]))]
     starts = bounds[:-1]
     nonempty = counts > 0
     at = np.where(nonempty, starts, 0)
@@ -265,6 +296,32 @@ def _stats(
             strict=True,
         )
     ]
+
+
+_FIRST_ROW = np.zeros(1, dtype=np.intp)
+
+
+def _stats_one(columns: SegmentColumns, spirals: list[Spiral], tolerance: float) -> SplineStats:
+    """:func:`_stats` for a batch of one non-empty spline, with whole-array reductions: the
+    same numbers (sums by the same ``reduceat``; maxima, minima and the first maximum are
+    exact) at a fraction of the calls."""
+    dev = columns.max_deviation
+    segments = dev.size
+    arcs = int(np.count_nonzero(columns.is_arc))
+    max_dev = float(np.maximum.reduce(dev))
+    radius = columns.radius if arcs == segments else columns.radius[columns.is_arc]
+    return SplineStats(
+        arc_count=arcs,
+        line_count=segments - arcs,
+        max_deviation=max_dev,
+        u_at_max_deviation=float(columns.u_at_max_deviation[int(np.argmax(dev))]),
+        deviation_ratio=max_dev / tolerance,
+        mean_segment_deviation=float(np.add.reduceat(dev, _FIRST_ROW)[0]) / segments,
+        spiral_length=float(spiral_lengths(spirals)[0]),
+        spline_length=float(np.add.reduceat(columns.length, _FIRST_ROW)[0]),
+        min_radius=float(np.minimum.reduce(radius)) if arcs else None,
+        max_radius=float(np.maximum.reduce(radius)) if arcs else None,
+    )
 
 
 #: Spirals per block, so that a block's (rows × nodes) temporaries stay in cache.
