@@ -82,7 +82,7 @@ HINT_LAMBDA = 0.12
 HINT_LAMBDAS = 7
 #: Refining rounds between the longest fit and the next grid value: ``u1`` points, ``λ`` points.
 REFINE_ROUNDS = 2
-REFINE = 6
+REFINE = 5
 REFINE_LAMBDAS = 5
 LAMBDA_MARGIN = 1e-3
 #: The pieces proven where neither the interpolated crossing nor the longest screened fit
