@@ -40,7 +40,9 @@ Theorem 2 polynomial times ``κ``). All its roots in the piece are isolated rigo
 one root there; between consecutive roots of ``h⁽ᵈ⁺¹⁾`` the function ``h⁽ᵈ⁾`` is monotone, so a
 sign change brackets its only root in that sub-interval and no sign change means none. Going
 down from ``d = 4`` to ``d = 0`` with a bracketed Newton iteration at each level yields every
-root of ``h`` in the piece (up to the iteration's resolution, where ``e`` is flat). The maximum
+root of ``h`` in the piece (up to the iteration's resolution, where ``e`` is flat). Since
+``c4 = 0``, ``h⁽⁴⁾ = 120·c5·u`` has no root in ``u > 0`` and ``h⁽³⁾ = 6·c3 + 60·c5·u²`` has its
+root in closed form, so the iteration runs on levels 2, 1 and 0 only. The maximum
 of ``e`` over the piece is the largest value at the piece's ends and at these roots; no sample
 is involved. The distance at the ends is the exact distance between the spiral point on the
 joint's normal line and the joint.
@@ -301,7 +303,12 @@ def _cascade_roots(coeffs: FloatArray, lo: FloatArray, hi: FloatArray) -> FloatA
         bracketed = ((fa < 0.0) & (fb > 0.0)) | ((fa > 0.0) & (fb < 0.0))
         roots = a.copy()
         rows, cols = np.nonzero(bracketed)
-        if rows.size:
+        if rows.size and level == 3 and skip_top:
+            # The third derivative is 6·c3 + 60·c5·u² (c4 = 0): its root in u > 0 in closed form.
+            with np.errstate(invalid="ignore", divide="ignore"):
+                root = np.sqrt(-c[rows, 0] / c[rows, 2])
+            roots[rows, cols] = np.clip(root, a[rows, cols], b[rows, cols])
+        elif rows.size:
             cr = c[rows]
             dc = (
                 derivatives[level + 1][rows] if level < 4 else cr[:, 1:] * np.arange(1, cr.shape[1])
