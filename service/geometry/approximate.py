@@ -142,10 +142,12 @@ def _subdivide_batch(
     row_spiral = np.repeat(outcome.kept.spiral, 2)
     done = splines(columns, row_spiral, spirals, tolerances, strategy)
     placement = _placement_error(columns)
-    unplaceable = np.zeros(len(spirals), dtype=bool)
-    np.logical_or.at(
-        unplaceable, row_spiral, columns.max_deviation + placement > tolerances[row_spiral]
-    )
+    beyond = columns.max_deviation + placement > tolerances[row_spiral]
+    if len(spirals) == 1:
+        unplaceable = np.array([np.count_nonzero(beyond) > 0])
+    else:
+        unplaceable = np.zeros(len(spirals), dtype=bool)
+        np.logical_or.at(unplaceable, row_spiral, beyond)
     results: list[ArcSpline | GeometryError] = []
     for j, why in enumerate(outcome.failure):
         if why:
@@ -165,7 +167,7 @@ def _placement_error(columns: SegmentColumns) -> FloatArray:
     centre = columns.center.astype(np.longdouble)
     radius = np.where(columns.is_arc, columns.radius, 0.0).astype(np.longdouble)
     gaps = [
-        np.abs(np.sqrt(np.sum((p.astype(np.longdouble) - centre) ** 2, axis=1)) - radius)
+        np.abs(np.sqrt(np.add.reduce(np.square(p.astype(np.longdouble) - centre), 1)) - radius)
         for p in (columns.start, columns.end)
     ]
     error: FloatArray = np.where(columns.is_arc, np.maximum(*gaps), 0.0).astype(np.float64)

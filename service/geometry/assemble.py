@@ -101,10 +101,8 @@ def segment_columns(kept: Kept, k: FloatArray, m: FloatArray, frames: Frames) ->
     q0x, q0y = canonical.point(kk, mm, b.u0)
     q1x, q1y = canonical.point(kk, mm, b.u1)
     r0, r1 = b.radius0, b.radius1
-    sin01, cos01 = (
-        np.sin(np.array([b.phi0_rad, b.phi1_rad])),
-        np.cos(np.array([b.phi0_rad, b.phi1_rad])),
-    )
+    phi01 = np.array([b.phi0_rad, b.phi1_rad])
+    sin01, cos01 = np.sin(phi01), np.cos(phi01)
     world = rows.vector(
         ALL,
         np.array([q0x, q1x, b.join_dx, -(r0 * sin01[0]), -(r1 * sin01[1])]),
