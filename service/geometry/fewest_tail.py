@@ -28,6 +28,9 @@ from .types import BoolArray, FloatArray
 
 _SAMPLES = 8
 _T = (np.arange(_SAMPLES) + 0.5) / _SAMPLES
+#: Samples per arc on the first grid, which only picks the pattern search's start.
+_COARSE_SAMPLES = 5
+_COARSE_T = (np.arange(_COARSE_SAMPLES) + 0.5) / _COARSE_SAMPLES
 #: Pattern-search rounds and points per axis of each round.
 _ROUNDS = 8
 _AXIS = 4
@@ -110,16 +113,16 @@ def _triarcs(
     )
 
 
-def _screen(k: FloatArray, m: FloatArray, t: Triarc) -> FloatArray:
+def _screen(k: FloatArray, m: FloatArray, t: Triarc, samples: FloatArray) -> FloatArray:
     with np.errstate(invalid="ignore", divide="ignore"):  # invalid candidates: masked as inf
-        return _sampled(k, m, t)
+        return _sampled(k, m, t, samples)
 
 
-def _sampled(k: FloatArray, m: FloatArray, t: Triarc) -> FloatArray:
+def _sampled(k: FloatArray, m: FloatArray, t: Triarc, samples: FloatArray) -> FloatArray:
     s = np.where(t.ok[:, None], t.s, np.linspace(0.0, 1.0, 4)[None, :])
     worst = np.zeros(t.ok.shape[0])
     for i in range(3):
-        u = s[:, i, None] + (s[:, i + 1] - s[:, i])[:, None] * _T[None, :]
+        u = s[:, i, None] + (s[:, i + 1] - s[:, i])[:, None] * samples[None, :]
         e = screen_radial(
             k[:, None],
             m[:, None],
@@ -135,7 +138,7 @@ def _sampled(k: FloatArray, m: FloatArray, t: Triarc) -> FloatArray:
 
 
 def _build(
-    k: FloatArray, m: FloatArray, ua: FloatArray, grid: FloatArray
+    k: FloatArray, m: FloatArray, ua: FloatArray, grid: FloatArray, samples: FloatArray = _T
 ) -> tuple[Triarc, FloatArray]:
     """Triarcs and scores of candidates ``grid`` (rows, G, 3) = (v, δ, λ) for each row."""
     g = grid.shape[1]
@@ -144,7 +147,7 @@ def _build(
         t = _triarcs(
             kk, mm, aa, grid[..., 0].ravel(), grid[..., 1].ravel(), grid[..., 2].ravel(), False
         )
-    return t, _screen(kk, mm, t).reshape(-1, g)
+    return t, _screen(kk, mm, t, samples).reshape(-1, g)
 
 
 def best_triarcs(
@@ -169,7 +172,7 @@ def best_triarcs(
     scale = np.stack([span, tol, np.ones(n)], axis=1)
     offset = np.stack([ua, np.zeros(n), np.zeros(n)], axis=1)
     grid = offset[:, None, :] + scale[:, None, :] * unit[None, :, :]
-    _, score = _build(k, m, ua, grid)
+    _, score = _build(k, m, ua, grid, _COARSE_T)
     best = np.argmin(score, axis=1)
     centre = grid[rows, best]
     best_score = score[rows, best]
