@@ -1,17 +1,21 @@
 """The process pool: how work reaches the worker processes, is bounded, timed, healed, drained.
 
-:class:`WorkerPool` runs picklable functions (those of ``service.jobs``) from the event loop:
+:class:`WorkerPool` runs picklable functions (those of ``service.jobs``) in worker processes
+from the event loop. Each worker is a process with a socket to the server; the event loop
+writes a task to an idle worker's socket and reads the answer from it as an asyncio stream,
+and the socket's end-of-file tells it when the worker has died. No threads are involved
+(``ProcessPoolExecutor`` takes two per pool and, with them, the GIL on every task), and a
+worker can be killed and replaced alone:
 
 - admission is bounded by ``capacity`` units in flight (running or waiting), not by the pool
   size; beyond it :class:`QueueFullError` (the API answers 503 + Retry-After);
-- at most ``size`` tasks are handed to the executor at once, so a task starts on an idle
-  worker and its time limit measures its running time, not its wait;
-- a task past its time limit (:class:`JobTimeoutError`) means a stuck worker: the workers are
-  killed and the pool rebuilt, so it never holds a slot for good;
-- a dead worker (killed, out of memory) breaks a ``ProcessPoolExecutor`` as a whole: the
-  pool is rebuilt and each affected task retried once (they are pure functions); a second
-  failure is :class:`PoolUnavailableError`;
-- :meth:`WorkerPool.drain` waits for in-flight work, then shuts the workers down.
+- a task waits for an idle worker; its time limit measures its running time, not its wait;
+- a task past its time limit (:class:`JobTimeoutError`) means a stuck worker: that worker is
+  killed and replaced, so it never holds a slot for good;
+- a worker that dies (killed, out of memory) is replaced, and its task retried once on
+  another (tasks are pure functions); a second death is :class:`PoolUnavailableError`;
+- :attr:`WorkerPool.ready` is false while a worker is being replaced;
+- :meth:`WorkerPool.drain` waits for in-flight work, then stops the workers.
 
 :class:`Coalescer` sends single jobs that arrive while every worker is busy to a worker
 together, as one task: under load one vectorised call of the core serves many requests (and
@@ -25,16 +29,19 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
+import itertools
 import logging
 import math
 import multiprocessing
-import os
+import pickle
 import signal
-import time
+import socket
+import struct
 from collections import deque
 from collections.abc import Callable, Iterator, Sequence
-from concurrent.futures import ProcessPoolExecutor
-from concurrent.futures.process import BrokenProcessPool
+from dataclasses import dataclass, field
+from multiprocessing.connection import Connection
+from multiprocessing.process import BaseProcess
 from typing import Any, Generic, Literal, TypeVar
 
 log = logging.getLogger(__name__)
@@ -44,17 +51,43 @@ Arg = TypeVar("Arg")
 
 #: Modules the forkserver imports once, so that every worker starts with them loaded.
 PRELOAD = ["service.jobs"]
+#: How long starting a worker may take before the pool gives up on it.
+START_TIMEOUT_S = 60.0
+#: How long a stopping worker may take to exit before it is killed.
+STOP_TIMEOUT_S = 5.0
+
+_READY = b"ready"
+#: Read buffer of a worker's stream; answers are read with readexactly, whatever their size.
+_STREAM_LIMIT = 1 << 20
 
 
-def _initialize_worker() -> None:
+# -- inside a worker process --------------------------------------------------------------
+
+
+def _worker_main(conn: Connection) -> None:
+    """A worker's life: announce readiness, then run tasks until told to stop (``None``)."""
     # Ctrl-C reaches the whole process group; the server drains and stops the workers itself.
     signal.signal(signal.SIGINT, signal.SIG_IGN)
-
-
-def _warm() -> int:
-    """A no-op task that makes the executor start a worker; returns the worker's pid."""
-    time.sleep(0.01)  # keeps this worker busy while the next warm task starts another
-    return os.getpid()
+    for module in PRELOAD:
+        __import__(module)
+    conn.send_bytes(_READY)
+    while True:
+        try:
+            task = pickle.loads(conn.recv_bytes())
+        except EOFError:  # the server has gone
+            return
+        if task is None:
+            return
+        fn, args = task
+        try:
+            answer: tuple[bool, Any] = (True, fn(*args))
+        except Exception as error:  # a bug in fn: the server re-raises it (a 500)
+            answer = (False, error)
+        try:
+            message = pickle.dumps(answer, pickle.HIGHEST_PROTOCOL)
+        except Exception as error:  # an unpicklable result or exception
+            message = pickle.dumps((False, RuntimeError(f"unpicklable answer: {error!r}")))
+        conn.send_bytes(message)
 
 
 # -- the pool (runs on the event loop) ----------------------------------------------------
@@ -82,12 +115,25 @@ class PoolUnavailableError(PoolError):
     """The pool cannot run the task: not started, stopped, or failing repeatedly."""
 
 
-PoolState = Literal["stopped", "starting", "ready", "rebuilding", "draining"]
+PoolState = Literal["stopped", "starting", "ready", "draining"]
 
-#: How long starting (or restarting) the workers may take before the pool gives up.
-WARM_TIMEOUT_S = 60.0
-#: How often the watchdog looks for a worker that died while the pool was idle.
-WATCH_INTERVAL_S = 0.25
+
+class _WorkerDiedError(Exception):
+    """The worker running a task died before it answered."""
+
+
+@dataclass(eq=False)
+class _Worker:
+    process: BaseProcess
+    reader: asyncio.StreamReader
+    writer: asyncio.StreamWriter
+    #: The answer awaited from this worker, while it runs a task.
+    answer: asyncio.Future[tuple[bool, Any]] | None = None
+    #: Set once the pool has given the worker up (killed, dead or stopping).
+    retired: bool = False
+    ready: asyncio.Future[None] = field(
+        default_factory=lambda: asyncio.get_running_loop().create_future()
+    )
 
 
 class WorkerPool:
@@ -105,35 +151,36 @@ class WorkerPool:
         self.capacity = capacity
         self.retry_after_s = retry_after_s
         self.state: PoolState = "stopped"
-        self.rebuilds = 0
+        #: Workers replaced so far (after a death or a time limit).
+        self.restarts = 0
         self.in_flight = 0
         self.running = 0
-        self._start_method = start_method
-        self._executor: ProcessPoolExecutor | None = None
-        self._generation = 0
+        self._context: Any = multiprocessing.get_context(start_method)
+        if start_method == "forkserver":
+            # Workers fork from a server that has imported numpy and the core already.
+            self._context.set_forkserver_preload([__name__, *PRELOAD])
+        self._workers: list[_Worker] = []
+        # Idle workers; one that died while waiting here is skipped when taken.
+        self._idle_workers: asyncio.Queue[_Worker] = asyncio.Queue()
+        self._starting = 0
         self._slots = asyncio.Semaphore(size)
-        self._lock = asyncio.Lock()
         self._idle = asyncio.Event()
         self._idle.set()
-        self._watchdog: asyncio.Task[None] | None = None
-        # Results awaited from the workers, by executor generation; those whose workers were
-        # replaced before they answered are "lost" (see _rebuild).
-        self._waiting: dict[asyncio.Future[Any], int] = {}
-        self._lost: set[asyncio.Future[Any]] = set()
+        self._background: set[asyncio.Task[None]] = set()
 
     @property
     def ready(self) -> bool:
-        """Up and accepting work (the readiness probe)."""
-        return self.state == "ready" and not self._broken()
+        """Up and accepting work, every worker alive (the readiness probe)."""
+        return self.state == "ready" and self._starting == 0
 
     @property
     def pids(self) -> list[int]:
-        """Process ids of the current workers (for diagnostics and tests)."""
-        return sorted(getattr(self._executor, "_processes", None) or {})
+        """Process ids of the live workers (for diagnostics and tests)."""
+        return sorted(w.process.pid for w in self._workers if w.process.pid is not None)
 
     @property
     def queue_depth(self) -> int:
-        """Admitted tasks waiting for a worker."""
+        """Admitted units waiting for a worker."""
         return self.in_flight - self.running
 
     # -- lifecycle ---------------------------------------------------------------------
@@ -141,42 +188,46 @@ class WorkerPool:
     async def start(self) -> None:
         """Start the workers and wait until each has imported the core."""
         self.state = "starting"
-        async with self._lock:
-            self._executor = await self._new_executor()
+        self._starting += self.size
+        await asyncio.gather(*(self._spawn() for _ in range(self.size)))
         self.state = "ready"
-        self._watchdog = asyncio.create_task(self._watch(), name="worker-pool-watchdog")
 
     async def drain(self, timeout_s: float) -> None:
         """Stop admitting, wait up to ``timeout_s`` for in-flight tasks, stop the workers."""
         self.state = "draining"
         with contextlib.suppress(TimeoutError):
             await asyncio.wait_for(self._idle.wait(), timeout_s)
-        if self._watchdog is not None:
-            self._watchdog.cancel()
-            with contextlib.suppress(asyncio.CancelledError):
-                await self._watchdog
-        executor, self._executor = self._executor, None
-        if executor is not None:
-            await asyncio.to_thread(executor.shutdown, wait=True, cancel_futures=True)
+        background = list(self._background)
+        for task in background:
+            task.cancel()
+        await asyncio.gather(*background, return_exceptions=True)
+        workers, self._workers = self._workers, []
+        for worker in workers:
+            self._retire(worker)
+            with contextlib.suppress(OSError, RuntimeError):
+                worker.writer.write(_frame(pickle.dumps(None)))
+        await asyncio.to_thread(_join_all, [w.process for w in workers])
+        for worker in workers:
+            worker.writer.close()
         self.state = "stopped"
 
     # -- running tasks -----------------------------------------------------------------
 
     @contextlib.contextmanager
-    def admit(self, tasks: int = 1) -> Iterator[None]:
-        """Reserve room for ``tasks`` tasks, or refuse at once."""
-        if self.state in ("stopped", "starting") or self._executor is None:
+    def admit(self, units: int = 1) -> Iterator[None]:
+        """Reserve room for ``units`` (requests or tasks), or refuse at once."""
+        if self.state in ("stopped", "starting"):
             raise PoolUnavailableError("the worker pool is not running")
-        if self.in_flight + tasks > self.capacity:
-            error = QueueFullError(f"{self.in_flight} tasks in flight (capacity {self.capacity})")
+        if self.in_flight + units > self.capacity:
+            error = QueueFullError(f"{self.in_flight} in flight (capacity {self.capacity})")
             error.retry_after_s = self.retry_after_s
             raise error
-        self.in_flight += tasks
+        self.in_flight += units
         self._idle.clear()
         try:
             yield
         finally:
-            self.in_flight -= tasks
+            self.in_flight -= units
             if self.in_flight == 0:
                 self._idle.set()
 
@@ -230,107 +281,197 @@ class WorkerPool:
         deadline: float | None,
         units: int = 1,
     ) -> T:
-        """Run a task in a worker while holding a slot: time limit, rebuild, one retry.
+        """Run a task on an idle worker while holding a slot: time limit, one retry.
 
         ``units`` is how many admitted units the task carries (a coalesced task, several).
         """
         loop = asyncio.get_running_loop()
+        message = _frame(pickle.dumps((fn, args), pickle.HIGHEST_PROTOCOL))
         for _attempt in range(2):
-            async with self._lock:  # held while rebuilding: wait for the new workers
-                executor, generation = self._executor, self._generation
-            if executor is None:
-                raise PoolUnavailableError("the worker pool has stopped")
-            try:
-                future = executor.submit(fn, *args)
-            except BrokenProcessPool:
-                await self._rebuild(generation)
-                continue
+            worker = await self._idle_worker()
+            answer = worker.answer = loop.create_future()
+            # Buffered by the transport: the idle worker reads it at once.
+            worker.writer.write(message)
             self.running += units
-            waiting = asyncio.wrap_future(future)
-            self._waiting[waiting] = generation
             try:
                 run_deadline = loop.time() + time_limit_s if deadline is None else deadline
                 async with asyncio.timeout_at(run_deadline):
-                    return await waiting
+                    ok, value = await answer
             except TimeoutError:
-                log.warning("a task exceeded its time limit; restarting the workers")
-                await self._rebuild(generation, kill=True)
+                log.warning(
+                    "a task exceeded its time limit of %g s; replacing its worker", time_limit_s
+                )
+                self._replace(worker, kill=True)
                 raise JobTimeoutError(time_limit_s) from None
-            except BrokenProcessPool:
-                log.warning("a worker process died; restarting the workers, retrying")
-                await self._rebuild(generation)
-            except asyncio.CancelledError:
-                if waiting not in self._lost:
-                    raise
-                # Its workers were replaced while it waited (see _rebuild): retry.
+            except _WorkerDiedError:
+                log.warning("a worker process died during a task; replacing it, retrying")
+                continue
+            except BaseException:
+                # Cancelled while the worker runs: its answer would come to no one.
+                self._replace(worker, kill=True)
+                raise
             finally:
                 self.running -= units
-                self._waiting.pop(waiting, None)
-                self._lost.discard(waiting)
+            worker.answer = None
+            self._release(worker)
+            if not ok:
+                raise value
+            result: T = value
+            return result
         raise PoolUnavailableError("worker processes died twice while running this job")
 
-    # -- rebuilding --------------------------------------------------------------------
+    # -- workers -----------------------------------------------------------------------
 
-    def _broken(self) -> bool:
-        # ProcessPoolExecutor marks itself broken as soon as a worker dies (even when idle);
-        # ``_broken`` is private, but public only from Python 3.14 on.
-        return bool(getattr(self._executor, "_broken", False))
-
-    async def _new_executor(self) -> ProcessPoolExecutor:
-        context = multiprocessing.get_context(self._start_method)
-        if self._start_method == "forkserver":
-            # Workers fork from a server that has imported numpy and the core already.
-            context.set_forkserver_preload([__name__, *PRELOAD])
-        executor = ProcessPoolExecutor(
-            max_workers=self.size, mp_context=context, initializer=_initialize_worker
-        )
-        # Executors start workers on demand; one warm task per worker starts them all now.
-        warm = [asyncio.wrap_future(executor.submit(_warm)) for _ in range(self.size)]
-        try:
-            await asyncio.wait_for(asyncio.gather(*warm), WARM_TIMEOUT_S)
-        except BaseException:
-            _kill_workers(executor)
-            executor.shutdown(wait=False, cancel_futures=True)
-            raise
-        return executor
-
-    async def _rebuild(self, generation: int, *, kill: bool = False) -> None:
-        """Replace the executor of ``generation`` (once, however many tasks ask)."""
-        async with self._lock:
-            if generation != self._generation or self._executor is None:
-                return
-            previous_state = self.state
-            self.state = "rebuilding"
-            old = self._executor
-            if kill:
-                _kill_workers(old)
-            old.shutdown(wait=False, cancel_futures=True)
-            # A broken executor fails its pending futures, except one submitted in the instant
-            # it broke (CPython's check of ``_broken`` in submit() races with the manager
-            # thread), which would wait forever. Whatever the old workers still owe is lost.
-            for waiting, owner in list(self._waiting.items()):
-                if owner == generation and not waiting.done():
-                    self._lost.add(waiting)
-                    waiting.cancel()
-            try:
-                self._executor = await self._new_executor()
-            except BaseException:
-                self._executor = None
-                self.state = "stopped"
-                log.exception("could not restart the worker processes")
-                raise PoolUnavailableError("the worker pool could not be restarted") from None
-            self._generation += 1
-            self.rebuilds += 1
-            self.state = "draining" if previous_state == "draining" else "ready"
-            log.info("worker processes restarted (rebuild %d)", self.rebuilds)
-
-    async def _watch(self) -> None:
-        """Rebuild a pool whose worker died while no task was there to notice."""
+    async def _idle_worker(self) -> _Worker:
+        """An idle worker (one exists, or is starting, for each slot held)."""
         while True:
-            await asyncio.sleep(WATCH_INTERVAL_S)
-            if self._broken():
-                with contextlib.suppress(PoolUnavailableError):
-                    await self._rebuild(self._generation)
+            if self._idle_workers.empty():
+                try:
+                    async with asyncio.timeout(START_TIMEOUT_S):
+                        worker = await self._idle_workers.get()
+                except TimeoutError:
+                    raise PoolUnavailableError("no worker process could be started") from None
+            else:
+                worker = self._idle_workers.get_nowait()
+            if worker.retired:
+                continue
+            if worker.writer.is_closing() or not worker.process.is_alive():
+                # Dead while idle, and the event loop has not heard yet (say, killed with
+                # the others by the OOM killer): not a failure of the task about to be sent.
+                self._on_death(worker)
+                continue
+            return worker
+
+    def _release(self, worker: _Worker) -> None:
+        if not worker.retired:
+            self._idle_workers.put_nowait(worker)
+
+    async def _spawn(self) -> None:
+        """Start one worker and wait for it to say it is ready (``_starting`` counted it).
+
+        A worker that does not start is tried again, after a growing pause, until one does
+        (or the pool drains); meanwhile the pool is not ready.
+        """
+        try:
+            for attempt in itertools.count():
+                if attempt:
+                    await asyncio.sleep(min(2.0**attempt, 30.0))
+                ours, theirs = socket.socketpair()
+                child = Connection(theirs.detach())
+                process = self._context.Process(
+                    target=_worker_main, args=(child,), daemon=True, name="arcspline-worker"
+                )
+                try:
+                    # Quick (the forkserver forks; the child imports on its own time), and
+                    # not awaited, so that a cancelled start cannot lose a process.
+                    process.start()
+                    reader, writer = await asyncio.open_unix_connection(
+                        sock=ours, limit=_STREAM_LIMIT
+                    )
+                except BaseException:
+                    ours.close()
+                    if process.pid is not None:
+                        process.kill()
+                    raise
+                finally:
+                    child.close()
+                worker = _Worker(process=process, reader=reader, writer=writer)
+                self._workers.append(worker)
+                self._background_task(self._listen(worker))
+                try:
+                    await asyncio.wait_for(asyncio.shield(worker.ready), START_TIMEOUT_S)
+                except (TimeoutError, _WorkerDiedError):
+                    log.error("a worker process did not start (attempt %d)", attempt + 1)
+                    self._retire(worker, kill=True)
+                    continue
+                except BaseException:
+                    self._retire(worker, kill=True)
+                    raise
+                self._release(worker)
+                return
+        finally:
+            self._starting -= 1
+
+    async def _listen(self, worker: _Worker) -> None:
+        """Read the worker's messages (frames of ``multiprocessing.Connection``) until EOF."""
+        reader = worker.reader
+        try:
+            while True:
+                (size,) = struct.unpack("!i", await reader.readexactly(4))
+                if size == -1:  # a message of 2 GiB or more
+                    (size,) = struct.unpack("!Q", await reader.readexactly(8))
+                data = await reader.readexactly(size)
+                if not worker.ready.done():
+                    worker.ready.set_result(None)
+                    continue
+                answer = worker.answer
+                if answer is not None and not answer.done():
+                    answer.set_result(pickle.loads(data))
+        except (asyncio.IncompleteReadError, ConnectionError, OSError):
+            # The worker's end of the socket closed: it has died (or was stopped).
+            self._on_death(worker)
+
+    def _on_death(self, worker: _Worker) -> None:
+        if worker.retired:
+            return
+        self._retire(worker)
+        worker.writer.close()
+        if not worker.ready.done():
+            worker.ready.set_exception(_WorkerDiedError())
+            return
+        if worker.answer is not None and not worker.answer.done():
+            worker.answer.set_exception(_WorkerDiedError())
+        self._respawn()
+
+    def _replace(self, worker: _Worker, *, kill: bool) -> None:
+        if not worker.retired:
+            self._retire(worker, kill=kill)
+            self._respawn()
+
+    def _respawn(self) -> None:
+        if self.state in ("draining", "stopped"):
+            return
+        self.restarts += 1
+        self._starting += 1  # not ready from now until the new worker is
+        self._background_task(self._spawn())
+
+    def _retire(self, worker: _Worker, *, kill: bool = False) -> None:
+        """Forget a worker, and kill it if asked."""
+        worker.retired = True
+        if worker in self._workers:
+            self._workers.remove(worker)
+        if kill:
+            with contextlib.suppress(ProcessLookupError, ValueError, AttributeError):
+                worker.process.kill()
+            self._background_task(_reap(worker))
+
+    def _background_task(self, coroutine: Any) -> None:
+        task = asyncio.create_task(coroutine)
+        self._background.add(task)  # the loop keeps only weak references to tasks
+        task.add_done_callback(self._background.discard)
+
+
+async def _reap(worker: _Worker) -> None:
+    """Collect a killed worker's exit status and close its socket, off the event loop."""
+    try:
+        await asyncio.to_thread(worker.process.join, STOP_TIMEOUT_S)
+    finally:
+        worker.writer.close()
+
+
+def _frame(payload: bytes) -> bytes:
+    """``payload`` as ``multiprocessing.Connection.send_bytes`` frames it (for the worker)."""
+    if len(payload) > 0x7FFFFFFF:
+        return struct.pack("!iQ", -1, len(payload)) + payload
+    return struct.pack("!i", len(payload)) + payload
+
+
+def _join_all(processes: list[BaseProcess]) -> None:
+    for process in processes:
+        process.join(STOP_TIMEOUT_S)
+        if process.is_alive():
+            process.kill()
+            process.join()
 
 
 class Coalescer(Generic[Item, Arg, T]):
@@ -408,14 +549,6 @@ class Coalescer(Generic[Item, Arg, T]):
         for (_, result), value in zip(batch, results, strict=True):
             if not result.done():
                 result.set_result(value)
-
-
-def _kill_workers(executor: ProcessPoolExecutor) -> None:
-    # ``_processes`` is private; Python 3.14 offers ``kill_workers()`` for this.
-    processes = getattr(executor, "_processes", None) or {}
-    for process in list(processes.values()):
-        with contextlib.suppress(ProcessLookupError, ValueError, AttributeError):
-            process.kill()
 
 
 def chunk_sizes(jobs: int, workers: int, min_jobs: int) -> list[int]:

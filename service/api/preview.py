@@ -11,6 +11,7 @@ per cent of the picture.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import anyio
 import numpy as np
@@ -65,7 +66,10 @@ async def preview(body: ApproximateRequest, runtime: RuntimeDep) -> SVGResponse:
         raise ProblemError(job_problem(result, ["body"]))
     spiral, spline = result
     # Drawing is plain Python string work; a thread keeps the event loop answering.
-    svg = await anyio.to_thread.run_sync(render_svg, spiral, spline)
+    try:
+        svg = await anyio.to_thread.run_sync(render_svg, spiral, spline)
+    except GeometryError as error:
+        raise ProblemError(job_problem(error, ["body"])) from None
     return SVGResponse(svg)
 
 
@@ -124,52 +128,105 @@ def _deviation_curves(
     return curve, foot + band * direction, foot - band * direction
 
 
+@dataclass(frozen=True)
+class Layout:
+    """Everything to draw, in picture coordinates (pixels, y down)."""
+
+    width_px: float
+    height_px: float
+    magnify: float
+    path: FloatArray  # (k, 2) the spiral
+    starts: FloatArray  # (n, 2)
+    ends: FloatArray  # (n, 2)
+    centres: FloatArray  # (n, 2), meaningful for arcs
+    radii: FloatArray  # (n,), meaningful for arcs
+    curve: FloatArray  # (n, m, 2) the magnified deviation
+    band_out: FloatArray  # (n, m, 2)
+    band_in: FloatArray  # (n, m, 2)
+
+
+def layout(spiral: Spiral, spline: ArcSpline) -> Layout:
+    """Place the picture; a spiral whose numbers overflow on the way cannot be drawn.
+
+    Raises :class:`GeometryError` (kind ``precision``) when any coordinate of the picture is
+    not finite, as near the largest floating-point numbers.
+    """
+    c = spline.columns
+    with np.errstate(all="ignore"):
+        path = spiral.eval(np.linspace(0.0, 1.0, 400))
+        low, high = path.min(axis=0), path.max(axis=0)
+        extent = float(max(high[0] - low[0], high[1] - low[1], 1e-300))
+        # Centres near the spiral join the picture; far ones (flat arcs) show by their spokes.
+        centres = c.center[c.is_arc]
+        near = np.all((centres >= low - extent) & (centres <= high + extent), axis=1)
+        if near.any():
+            low = np.minimum(low, centres[near].min(axis=0))
+            high = np.maximum(high, centres[near].max(axis=0))
+        extent = float(max(high[0] - low[0], high[1] - low[1], 1e-300))
+        magnify = nice_number(BAND_FRACTION * extent / spline.tolerance)
+        margin = 0.08 * extent + magnify * spline.tolerance
+        x0, y1 = low[0] - margin, high[1] + margin
+        scale = WIDTH_PX / (high[0] - low[0] + 2 * margin)
+        height_px = max(200.0, float((high[1] - low[1] + 2 * margin) * scale)) + HEADER_PX
+
+        def xy(points: FloatArray) -> FloatArray:
+            # World (y up) to picture (y down) coordinates.
+            x = (points[..., 0] - x0) * scale
+            y = (y1 - points[..., 1]) * scale + HEADER_PX
+            return np.stack([x, y], axis=-1)
+
+        curve, band_out, band_in = _deviation_curves(spiral, spline, magnify)
+        result = Layout(
+            width_px=WIDTH_PX,
+            height_px=height_px,
+            magnify=magnify,
+            path=xy(path),
+            starts=xy(c.start),
+            ends=xy(c.end),
+            centres=xy(c.center),
+            radii=np.where(c.is_arc, c.radius, 0.0) * scale,
+            curve=xy(curve),
+            band_out=xy(band_out),
+            band_in=xy(band_in),
+        )
+    arrays = (result.path, result.starts, result.ends, result.curve, result.band_out)
+    finite = all(bool(np.isfinite(a).all()) for a in (*arrays, result.band_in))
+    arcs = c.is_arc
+    finite = finite and bool(np.isfinite(result.centres[arcs]).all())
+    finite = finite and bool(np.isfinite(result.radii).all()) and math.isfinite(height_px)
+    if not finite:
+        raise GeometryError(
+            "spiral", "its coordinates are too large to draw (they overflow)", kind="precision"
+        )
+    return result
+
+
+def _points(points: FloatArray) -> str:
+    return " ".join(f"{x:.2f},{y:.2f}" for x, y in points.tolist())
+
+
 def render_svg(spiral: Spiral, spline: ArcSpline) -> str:
     """The picture described in the module docstring, as an SVG document."""
     c = spline.columns
-    path = spiral.eval(np.linspace(0.0, 1.0, 400))
-    low, high = path.min(axis=0), path.max(axis=0)
-    extent = float(max(high[0] - low[0], high[1] - low[1], 1e-300))
-    # Centres near the spiral join the picture; far ones (flat arcs) show by their spokes.
-    centres = c.center[c.is_arc]
-    near = np.all((centres >= low - extent) & (centres <= high + extent), axis=1)
-    if near.any():
-        low = np.minimum(low, centres[near].min(axis=0))
-        high = np.maximum(high, centres[near].max(axis=0))
-    extent = float(max(high[0] - low[0], high[1] - low[1], 1e-300))
-    magnify = nice_number(BAND_FRACTION * extent / spline.tolerance)
-    margin = 0.08 * extent + magnify * spline.tolerance
-    x0, y1 = low[0] - margin, high[1] + margin
-    scale = WIDTH_PX / (high[0] - low[0] + 2 * margin)
-    height_px = max(200.0, (high[1] - low[1] + 2 * margin) * scale) + HEADER_PX
-
-    def xy(points: FloatArray) -> FloatArray:
-        # World (y up) to picture (y down) coordinates.
-        x = (points[..., 0] - x0) * scale
-        y = (y1 - points[..., 1]) * scale + HEADER_PX
-        return np.stack([x, y], axis=-1)
-
-    def polyline(points: FloatArray) -> str:
-        return " ".join(f"{x:.2f},{y:.2f}" for x, y in xy(points).tolist())
-
-    curve, band_out, band_in = _deviation_curves(spiral, spline, magnify)
-    stroke = max(1.0, WIDTH_PX / 600)
+    picture = layout(spiral, spline)
+    width, height, magnify = picture.width_px, picture.height_px, picture.magnify
+    stroke = max(1.0, width / 600)
     out: list[str] = [
-        f'<svg xmlns="http://www.w3.org/2000/svg" width="{WIDTH_PX}" height="{height_px:.0f}" '
-        f'viewBox="0 0 {WIDTH_PX} {height_px:.2f}" font-family="sans-serif" font-size="13">',
+        f'<svg xmlns="http://www.w3.org/2000/svg" width="{width:.0f}" height="{height:.0f}" '
+        f'viewBox="0 0 {width:.0f} {height:.2f}" font-family="sans-serif" font-size="13">',
         "<title>arcspline preview</title>",
-        f'<rect width="{WIDTH_PX}" height="{height_px:.2f}" fill="white"/>',
+        f'<rect width="{width:.0f}" height="{height:.2f}" fill="white"/>',
         '<g fill="#eeeeee" stroke="none">',
     ]
-    for outer, inner in zip(band_out, band_in, strict=True):
-        out.append(f'<polygon points="{polyline(np.concatenate([outer, inner[::-1]]))}"/>')
+    for outer, inner in zip(picture.band_out, picture.band_in, strict=True):
+        out.append(f'<polygon points="{_points(np.concatenate([outer, inner[::-1]]))}"/>')
     out.append("</g>")
     out.append(
-        f'<polyline points="{polyline(path)}" fill="none" stroke="black" '
+        f'<polyline points="{_points(picture.path)}" fill="none" stroke="black" '
         f'stroke-width="{stroke * 0.6:.2f}"/>'
     )
-    starts, ends, centre_xy = xy(c.start).tolist(), xy(c.end).tolist(), xy(c.center).tolist()
-    radii = (c.radius * scale).tolist()
+    starts, ends = picture.starts.tolist(), picture.ends.tolist()
+    centres, radii = picture.centres.tolist(), picture.radii.tolist()
     for i in range(len(c)):
         colour = COLOURS[i % 2]
         (sx, sy), (ex, ey) = starts[i], ends[i]
@@ -180,7 +237,7 @@ def render_svg(spiral: Spiral, spline: ArcSpline) -> str:
             flag = 0 if sweep > 0 else 1
             r = radii[i]
             d = f"M{sx:.2f},{sy:.2f} A{r:.6g},{r:.6g} 0 {large} {flag} {ex:.2f},{ey:.2f}"
-            cx, cy = centre_xy[i]
+            cx, cy = centres[i]
             out.append(
                 f'<path d="M{sx:.2f},{sy:.2f} L{cx:.2f},{cy:.2f} L{ex:.2f},{ey:.2f}" '
                 f'fill="none" stroke="{colour}" stroke-width="{stroke * 0.5:.2f}" '
@@ -196,7 +253,7 @@ def render_svg(spiral: Spiral, spline: ArcSpline) -> str:
             'stroke-opacity="0.7"/>'
         )
     out.append(f'<g fill="none" stroke="#2ca02c" stroke-width="{stroke:.2f}">')
-    out.extend(f'<polyline points="{polyline(segment)}"/>' for segment in curve)
+    out.extend(f'<polyline points="{_points(segment)}"/>' for segment in picture.curve)
     out.append("</g>")
     s = spline.stats
     legend = [

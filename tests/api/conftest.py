@@ -3,10 +3,12 @@ ASGI transport."""
 
 from __future__ import annotations
 
+import time
 from collections.abc import AsyncIterator, Callable
 from contextlib import AbstractAsyncContextManager, asynccontextmanager
 from typing import Any
 
+import anyio
 import httpx
 import pytest
 from asgi_lifespan import LifespanManager
@@ -61,6 +63,14 @@ def problem_of(response: httpx.Response, status: int) -> dict[str, Any]:
     assert body["detail"]
     assert body["type"]
     return body
+
+
+async def until_ready(client: httpx.AsyncClient, timeout_s: float = 30.0) -> None:
+    """Poll /readyz until the pool is ready again (a replaced worker starts in the background)."""
+    deadline = time.monotonic() + timeout_s
+    while (await client.get("/readyz")).status_code != 200:
+        assert time.monotonic() < deadline, "the pool did not become ready"
+        await anyio.sleep(0.02)
 
 
 def locs(problem: dict[str, Any]) -> list[list[str | int]]:

@@ -61,4 +61,4 @@ async def test_metrics_show_the_pool(client: httpx.AsyncClient) -> None:
     assert _get(samples, "arcspline_pool_ready") == 1
     assert _get(samples, "arcspline_pool_queue_depth") == 0
     assert _get(samples, "arcspline_pool_queue_capacity") == 16
-    assert ("arcspline_pool_rebuilds_total", frozenset()) in samples
+    assert ("arcspline_pool_worker_restarts_total", frozenset()) in samples

@@ -62,3 +62,24 @@ async def test_preview_errors_are_problems(client: httpx.AsyncClient) -> None:
 )
 def test_magnifications_are_round_numbers(x: float, nice: float) -> None:
     assert nice_number(x) == pytest.approx(nice)
+
+
+async def test_a_spiral_at_the_edge_of_double_precision_draws_or_is_refused(
+    client: httpx.AsyncClient,
+) -> None:
+    # Found by schemathesis: coordinates next to the largest double overflowed while drawing.
+    body = {
+        "spiral": {
+            "start": [0.0, 1.7976931348623141e308],
+            "start_tangent": [0.0, 1.0],
+            "turn_angle_deg": 1.0,
+            "end_curvature": -1.0,
+        },
+        "tolerance": 5.1093511924088776e294,
+    }
+    response = await client.post("/v1/preview", json=body)
+    if response.status_code == 200:
+        ET.fromstring(response.text)
+        assert not re.search(r"nan|inf", response.text.split("<text")[0], re.IGNORECASE)
+    else:
+        assert locs(problem_of(response, 422))[0][:2] == ["body", "spiral"]

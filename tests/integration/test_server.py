@@ -113,7 +113,7 @@ async def test_killing_a_worker_during_a_burst(server: Server) -> None:
         expected = (await client.post("/v1/approximate", json=HEAVY)).json()["stats"]
         workers = server.worker_pids()
         assert len(workers) == 2
-        rebuilds_before = server.metrics()["arcspline_pool_rebuilds_total"]
+        rebuilds_before = server.metrics()["arcspline_pool_worker_restarts_total"]
         burst = [
             asyncio.create_task(client.post("/v1/approximate", json=HEAVY)) for _ in range(120)
         ]
@@ -133,7 +133,7 @@ async def test_killing_a_worker_during_a_burst(server: Server) -> None:
             else:
                 assert response.headers["content-type"] == "application/problem+json"
         await _until(lambda: _ready(client))
-        assert (await _metrics(client))["arcspline_pool_rebuilds_total"] > rebuilds_before
+        assert (await _metrics(client))["arcspline_pool_worker_restarts_total"] > rebuilds_before
         assert workers[0] not in server.worker_pids()
         after = await client.post("/v1/approximate", json=HEAVY)
         assert _same_stats(after.json()["stats"], expected)
@@ -186,5 +186,5 @@ async def test_a_job_past_its_time_limit_is_a_504_and_the_pool_recovers(tmp_path
             assert response.json()["type"].endswith(":time-limit")
             await _until(lambda: _ready(client))
             metrics = await _metrics(client)
-            assert metrics["arcspline_pool_rebuilds_total"] >= 1
+            assert metrics["arcspline_pool_worker_restarts_total"] >= 1
             assert metrics["arcspline_errors_total{kind=time_limit}"] >= 1
