@@ -152,11 +152,31 @@ def _subdivide_batch(
     for j, why in enumerate(outcome.failure):
         if why:
             results.append(_failure(spirals[j], float(tolerances[j]), why, limits))
+        elif not _finite_columns(done[j].columns):
+            results.append(
+                GeometryError(
+                    "tolerance",
+                    "the arc spline overflowed double precision for this spiral",
+                    kind="precision",
+                )
+            )
         elif unplaceable[j]:
             results.append(_unplaceable(float(tolerances[j]), done[j]))
         else:
             results.append(done[j])
     return results
+
+
+def _finite_columns(columns: SegmentColumns) -> bool:
+    """A last guard: no result leaves the core with NaN or infinite numbers in it."""
+    arcs = columns.is_arc
+    return bool(
+        np.isfinite(columns.start).all()
+        and np.isfinite(columns.end).all()
+        and np.isfinite(columns.max_deviation).all()
+        and np.isfinite(columns.center[arcs]).all()
+        and np.isfinite(columns.radius[arcs]).all()
+    )
 
 
 def _placement_error(columns: SegmentColumns) -> FloatArray:

@@ -35,6 +35,12 @@ from .types import FloatArray, Point
 #: relative accuracy: enough for coordinates printed with ~7 significant digits.
 FORM_RTOL = 1e-6
 
+#: Coordinates and the spiral's size ``a`` stay within ``[1/MAX_MAGNITUDE, MAX_MAGNITUDE]`` so
+#: that squares, products and quotients of them stay finite and normal in double precision.
+MAX_MAGNITUDE = 1e150
+#: A spiral smaller than this fraction of its coordinates would be lost in their rounding.
+MIN_RELATIVE_SIZE = 1e-12
+
 
 def _finite(field: str, *values: float) -> None:
     if not all(math.isfinite(v) for v in values):
@@ -94,8 +100,21 @@ class Spiral:
             end_curvature=float(end_curvature),
         )
         _finite("end_curvature", spiral.a, spiral.b)
-        if not spiral.a > 0.0:
-            raise GeometryError("end_curvature", "is so large that the spiral has no extent")
+        if not 1.0 / MAX_MAGNITUDE <= spiral.a <= MAX_MAGNITUDE:
+            raise GeometryError(
+                "end_curvature",
+                f"gives a spiral of size a = {spiral.a:.3g}, outside the supported "
+                f"[{1.0 / MAX_MAGNITUDE:g}, {MAX_MAGNITUDE:g}]",
+            )
+        if max(abs(sx), abs(sy)) > MAX_MAGNITUDE:
+            raise GeometryError("start", f"coordinates must not exceed {MAX_MAGNITUDE:g} in size")
+        if spiral.a < MIN_RELATIVE_SIZE * max(abs(sx), abs(sy)):
+            raise GeometryError(
+                "end_curvature",
+                f"gives a spiral of size a = {spiral.a:.3g}, too small to be placed at "
+                f"coordinates of {max(abs(sx), abs(sy)):.3g} in double precision "
+                f"(needs at least {MIN_RELATIVE_SIZE:g} of them)",
+            )
         return spiral
 
     @classmethod

@@ -190,3 +190,21 @@ def test_batch_edge_cases() -> None:
     assert approximate_many([], []) == []
     with pytest.raises(ValueError, match="length"):
         approximate_many([PAPER, PAPER], [1e-3])
+
+
+@pytest.mark.parametrize(
+    ("start", "turn_angle_deg", "end_curvature"),
+    [
+        ((-1.1959e16, -6.3419e16), 5.83e-307, -0.5),  # size a is subnormal (found by schemathesis)
+        ((1e6, 1e6), 30.0, 1e8),  # a spiral of 3e-9 at coordinates of 1e6
+        ((0.0, 0.0), 30.0, 1e-160),  # a spiral of 1e160
+        ((1e200, 0.0), 30.0, 1.0),  # coordinates beyond 1e150
+    ],
+)
+def test_spirals_double_precision_cannot_hold_are_refused(
+    start: tuple[float, float], turn_angle_deg: float, end_curvature: float
+) -> None:
+    with pytest.raises(GeometryError) as caught:
+        Spiral.from_parameters(start, (1.0, 0.0), turn_angle_deg, end_curvature)
+    assert caught.value.field in {"start", "end_curvature"}
+    assert caught.value.kind == "invalid_input"
