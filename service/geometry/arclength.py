@@ -9,6 +9,7 @@ zero on ``[0, 1]`` (the spiral has no cusp), but as θ → 90° it dips to ``3.6
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -29,15 +30,23 @@ def _levels(k: FloatArray) -> int:
     return min(max(wanted, MIN_LEVELS), MAX_LEVELS)
 
 
-def canonical_lengths(k: FloatArray, m: FloatArray, u0: float = 0.0, u1: float = 1.0) -> FloatArray:
-    """Length of each canonical spiral ``(k, m)`` over ``[u0, u1]`` (arrays of shape ``(n,)``)."""
-    levels = _levels(k)
+@functools.lru_cache(maxsize=256)
+def _panels(levels: int, u0: float, u1: float) -> tuple[FloatArray, FloatArray]:
+    """Nodes and weights of the graded panels (cached: they depend on these three alone)."""
     fractions = np.concatenate([2.0 ** -np.arange(levels + 1, dtype=np.float64), [0.0]])
     edges = u1 - (u1 - u0) * fractions
     half = 0.5 * np.diff(edges)
     mid = 0.5 * (edges[:-1] + edges[1:])
     u = (mid[:, None] + half[:, None] * _NODES[None, :]).ravel()
     weights = (half[:, None] * _WEIGHTS[None, :]).ravel()
+    u.flags.writeable = False
+    weights.flags.writeable = False
+    return u, weights
+
+
+def canonical_lengths(k: FloatArray, m: FloatArray, u0: float = 0.0, u1: float = 1.0) -> FloatArray:
+    """Length of each canonical spiral ``(k, m)`` over ``[u0, u1]`` (arrays of shape ``(n,)``)."""
+    u, weights = _panels(_levels(k), float(u0), float(u1))
     w = u * u
     speed = 3.0 * np.hypot(1.0 + k[:, None] * w[None, :], m[:, None] * w[None, :])
     result: FloatArray = speed @ weights
