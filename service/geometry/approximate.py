@@ -14,8 +14,8 @@ from .assemble import Frames, segment_columns, splines
 from .errors import GeometryError
 from .fewest import fewest_batch
 from .spiral import Spiral
-from .subdivide import subdivide
-from .types import ArcSpline, FloatArray, SegmentColumns
+from .subdivide import IntArray, subdivide
+from .types import ArcSpline, BoolArray, FloatArray, SegmentColumns
 
 Strategy = Literal["subdivide", "fewest-arcs"]
 STRATEGIES: tuple[str, ...] = get_args(Strategy)
@@ -142,17 +142,15 @@ def _subdivide_batch(
     row_spiral = np.repeat(outcome.kept.spiral, 2)
     done = splines(columns, row_spiral, spirals, tolerances, strategy)
     placement = _placement_error(columns)
-    beyond = columns.max_deviation + placement > tolerances[row_spiral]
-    if len(spirals) == 1:
-        unplaceable = np.array([np.count_nonzero(beyond) > 0])
-    else:
-        unplaceable = np.zeros(len(spirals), dtype=bool)
-        np.logical_or.at(unplaceable, row_spiral, beyond)
+    unplaceable = _any_per_spiral(
+        columns.max_deviation + placement > tolerances[row_spiral], row_spiral, len(spirals)
+    )
+    overflowed = _any_per_spiral(~_finite_rows(columns), row_spiral, len(spirals))
     results: list[ArcSpline | GeometryError] = []
     for j, why in enumerate(outcome.failure):
         if why:
             results.append(_failure(spirals[j], float(tolerances[j]), why, limits))
-        elif not _finite_columns(done[j].columns):
+        elif overflowed[j]:
             results.append(
                 GeometryError(
                     "tolerance",
@@ -167,16 +165,25 @@ def _subdivide_batch(
     return results
 
 
-def _finite_columns(columns: SegmentColumns) -> bool:
+def _any_per_spiral(rows: BoolArray, row_spiral: IntArray, n: int) -> BoolArray:
+    """Whether any row of each spiral is set."""
+    if n == 1:
+        return np.array([bool(rows.any())])
+    result = np.zeros(n, dtype=bool)
+    result[row_spiral[rows]] = True
+    return result
+
+
+def _finite_rows(columns: SegmentColumns) -> BoolArray:
     """A last guard: no result leaves the core with NaN or infinite numbers in it."""
-    arcs = columns.is_arc
-    return bool(
-        np.isfinite(columns.start).all()
-        and np.isfinite(columns.end).all()
-        and np.isfinite(columns.max_deviation).all()
-        and np.isfinite(columns.center[arcs]).all()
-        and np.isfinite(columns.radius[arcs]).all()
+    circle = np.isfinite(columns.center).all(axis=1) & np.isfinite(columns.radius)
+    finite: BoolArray = (
+        np.isfinite(columns.start).all(axis=1)
+        & np.isfinite(columns.end).all(axis=1)
+        & np.isfinite(columns.max_deviation)
+        & (~columns.is_arc | circle)
     )
+    return finite
 
 
 def _placement_error(columns: SegmentColumns) -> FloatArray:
