@@ -27,6 +27,10 @@ _EPS = float(np.finfo(np.float64).eps)
 #: the spiral's coordinate scale, so the guarantee holds for the numbers it hands out.
 ROUNDING_MARGIN_ULPS = 32.0
 
+#: An arc's centre and radius round by a few ulps of ``‖C‖ + r``; arcs for which this many
+#: ulps still fit the tolerance need no measurement of it.
+PLACEMENT_SCREEN_ULPS = 64.0
+
 
 @dataclass(frozen=True, slots=True)
 class Limits:
@@ -141,9 +145,8 @@ def _subdivide_batch(
     columns = segment_columns(outcome.kept, k, m, frames)
     row_spiral = np.repeat(outcome.kept.spiral, 2)
     done = splines(columns, row_spiral, spirals, tolerances, strategy)
-    placement = _placement_error(columns)
     unplaceable = _any_per_spiral(
-        columns.max_deviation + placement > tolerances[row_spiral], row_spiral, len(spirals)
+        _unplaceable_rows(columns, tolerances[row_spiral]), row_spiral, len(spirals)
     )
     overflowed = _any_per_spiral(~_finite_rows(columns), row_spiral, len(spirals))
     results: list[ArcSpline | GeometryError] = []
@@ -186,18 +189,41 @@ def _finite_rows(columns: SegmentColumns) -> BoolArray:
     return finite
 
 
-def _placement_error(columns: SegmentColumns) -> FloatArray:
-    """How far rounding has moved each arc, measured: the larger of ``|‖S − C‖ − r|`` at its
-    start and end, in extended precision. Centre and radius are doubles, each off by ulps of
-    its own size, which for the huge radii of nearly straight spirals can exceed a tight
-    tolerance; the end points lie where the method put them, so the gap shows the error."""
-    centre = columns.center.astype(np.longdouble)
-    radius = np.where(columns.is_arc, columns.radius, 0.0).astype(np.longdouble)
+def _unplaceable_rows(columns: SegmentColumns, tolerance: FloatArray) -> BoolArray:
+    """Rows whose deviation plus measured placement error exceeds their tolerance.
+
+    The gap is a few ulps of ``‖C‖ + r``; only rows where ``PLACEMENT_SCREEN_ULPS`` of those
+    would not fit are measured (nearly always none), the others certainly fit.
+    """
+    size = np.abs(columns.center).max(axis=1) + columns.radius
+    screen = columns.is_arc & (
+        columns.max_deviation + PLACEMENT_SCREEN_ULPS * _EPS * size > tolerance
+    )
+    rows = np.zeros(len(columns), dtype=bool)
+    if screen.any():
+        which = np.flatnonzero(screen)
+        error = _placement_error(columns, which)
+        rows[which] = columns.max_deviation[which] + error > tolerance[which]
+    return rows
+
+
+def _placement_error(columns: SegmentColumns, which: IntArray | None = None) -> FloatArray:
+    """How far rounding has moved each arc (rows ``which``, default all), measured: the larger
+    of ``|‖S − C‖ − r|`` at its start and end, in extended precision. Centre and radius are
+    doubles, each off by ulps of its own size, which for the huge radii of nearly straight
+    spirals can exceed a tight tolerance; the end points lie where the method put them, so
+    the gap shows the error."""
+    rows = np.arange(len(columns)) if which is None else which
+    is_arc = columns.is_arc[rows]
+    centre = columns.center[rows].astype(np.longdouble)
+    radius = np.where(is_arc, columns.radius[rows], 0.0).astype(np.longdouble)
     gaps = [
-        np.abs(np.sqrt(np.add.reduce(np.square(p.astype(np.longdouble) - centre), 1)) - radius)
+        np.abs(
+            np.sqrt(np.add.reduce(np.square(p[rows].astype(np.longdouble) - centre), 1)) - radius
+        )
         for p in (columns.start, columns.end)
     ]
-    error: FloatArray = np.where(columns.is_arc, np.maximum(*gaps), 0.0).astype(np.float64)
+    error: FloatArray = np.where(is_arc, np.maximum(*gaps), 0.0).astype(np.float64)
     return error
 
 
