@@ -202,6 +202,24 @@ async def test_malformed_json_is_a_400(client: httpx.AsyncClient, raw: str) -> N
     assert problem["type"].endswith(":malformed-json")
 
 
+@pytest.mark.parametrize(
+    ("raw", "reason"),
+    [
+        (b'{"tolerance": ' + b"[" * 100_000 + b"]" * 100_000 + b"}", "nested too deeply"),
+        (b'{"tolerance": 1' + b"0" * 5000 + b"}", "digits"),
+        (b'{"tolerance": "\xff"}', "not UTF-8"),
+    ],
+    ids=["deep", "long-integer", "not-utf8"],
+)
+async def test_json_the_parser_cannot_take_is_malformed_json(
+    client: httpx.AsyncClient, raw: bytes, reason: str
+) -> None:
+    response = await client.post(URL, content=raw, headers={"content-type": "application/json"})
+    problem = problem_of(response, 400)
+    assert problem["type"].endswith(":malformed-json")
+    assert reason in problem["detail"]
+
+
 async def test_a_body_that_is_not_an_object_is_refused(client: httpx.AsyncClient) -> None:
     problem_of(await client.post(URL, json=[1, 2, 3]), 422)
     problem_of(await client.post(URL, content=b""), 422)
