@@ -99,7 +99,6 @@ class Spiral:
             turn_angle_rad=math.radians(turn_angle_deg),
             end_curvature=float(end_curvature),
         )
-        _finite("end_curvature", spiral.a, spiral.b)
         if not 1.0 / MAX_MAGNITUDE <= spiral.a <= MAX_MAGNITUDE:
             raise GeometryError(
                 "end_curvature",

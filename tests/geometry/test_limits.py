@@ -192,6 +192,15 @@ def test_batch_edge_cases() -> None:
         approximate_many([PAPER, PAPER], [1e-3])
 
 
+@pytest.mark.parametrize("end_curvature", [5e-324, -1e-310])
+def test_a_curvature_so_small_the_size_overflows_says_so(end_curvature: float) -> None:
+    # |c| is finite and non-zero; it is the size a ~ 1/c that leaves double precision.
+    with pytest.raises(GeometryError, match=r"size a = -?inf, outside the supported") as caught:
+        Spiral.from_parameters((0.0, 0.0), (1.0, 0.0), 50.0, end_curvature)
+    assert caught.value.field == "end_curvature"
+    assert caught.value.kind == "invalid_input"
+
+
 @pytest.mark.parametrize(
     ("start", "turn_angle_deg", "end_curvature"),
     [
