@@ -14,7 +14,8 @@ from .assemble import Frames, segment_columns, splines
 from .errors import GeometryError
 from .fewest import fewest_batch
 from .spiral import Spiral
-from .subdivide import IntArray, subdivide
+from .subdivide import IntArray, Subdivision, subdivide
+from .subdivide_one import subdivide_one
 from .types import ArcSpline, BoolArray, FloatArray, SegmentColumns
 
 Strategy = Literal["subdivide", "fewest-arcs"]
@@ -140,7 +141,7 @@ def _subdivide_batch(
     scale = np.array([s.a for s in spirals], dtype=np.float64)
     margin = np.array([_rounding_margin(s) for s in spirals], dtype=np.float64)
     k, m = canonical.coefficients(theta)
-    outcome = subdivide(k, m, (tolerances - margin) / scale, limits.max_segments // 2)
+    outcome = _subdivision(k, m, (tolerances - margin) / scale, limits.max_segments // 2)
     frames = Frames.of(spirals)
     columns = segment_columns(outcome.kept, k, m, frames)
     row_spiral = np.repeat(outcome.kept.spiral, 2)
@@ -166,6 +167,18 @@ def _subdivide_batch(
         else:
             results.append(done[j])
     return results
+
+
+def _subdivision(
+    k: FloatArray, m: FloatArray, tolerance: FloatArray, max_biarcs: int
+) -> Subdivision:
+    """:func:`subdivide`, through :func:`subdivide_one` for a single spiral (the same biarcs,
+    several times sooner) unless that one needs the batch path's judgement."""
+    if k.shape[0] == 1:
+        kept = subdivide_one(float(k[0]), float(m[0]), float(tolerance[0]), max_biarcs)
+        if kept is not None:
+            return Subdivision(kept=kept, failure=[""])
+    return subdivide(k, m, tolerance, max_biarcs)
 
 
 def _any_per_spiral(rows: BoolArray, row_spiral: IntArray, n: int) -> BoolArray:

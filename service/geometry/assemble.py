@@ -88,6 +88,12 @@ class Frames:
         world = self.phi_rad[i] + self.mirror[i] * angle_rad
         return np.asarray(np.arctan2(np.sin(world), np.cos(world)))
 
+    def direction_rad(self, i: IntArray | slice, x: FloatArray, y: FloatArray) -> FloatArray:
+        """World polar angles, in ``(−π, π]``, of canonical directions ``(x, y)``."""
+        c, sn = self.cos_phi[i], self.sin_phi[i]
+        y = self.mirror[i] * y
+        return np.asarray(np.arctan2(sn * x + c * y, c * x - sn * y))
+
 
 def segment_columns(kept: Kept, k: FloatArray, m: FloatArray, frames: Frames) -> SegmentColumns:
     """Two rows per kept biarc (arc 0, then arc 1), in the order of ``kept``."""
@@ -101,12 +107,11 @@ def segment_columns(kept: Kept, k: FloatArray, m: FloatArray, frames: Frames) ->
     q0x, q0y = canonical.point(kk, mm, b.u0)
     q1x, q1y = canonical.point(kk, mm, b.u1)
     r0, r1 = b.radius0, b.radius1
-    phi01 = np.array([b.phi0_rad, b.phi1_rad])
-    sin01, cos01 = np.sin(phi01), np.cos(phi01)
+    # r·N with N = (−e_y, e_x), the unit normal at each arc's tangent point.
     world = rows.vector(
         ALL,
-        np.array([q0x, q1x, b.join_dx, -(r0 * sin01[0]), -(r1 * sin01[1])]),
-        np.array([q0y, q1y, b.join_dy, r0 * cos01[0], r1 * cos01[1]]),
+        np.array([q0x, q1x, b.join_dx, -(r0 * b.e0y), -(r1 * b.e1y)]),
+        np.array([q0y, q1y, b.join_dy, r0 * b.e0x, r1 * b.e1x]),
     )
     a0 = rows.origin + world[0]
     a1 = rows.origin + world[1]
@@ -123,11 +128,13 @@ def segment_columns(kept: Kept, k: FloatArray, m: FloatArray, frames: Frames) ->
         return out
 
     # Every per-arc column pair (arc 0, arc 1) interleaved by one copy: shape (columns, 2n).
-    angles = rows.angle(ALL, np.array([b.phi0_rad, b.chord_rad]) - 0.5 * np.pi)
+    # Each arc starts at −N of its tangent direction from the centre: (e_y, −e_x).
+    angles = rows.direction_rad(ALL, np.array([b.e0y, b.ecy]), -np.array([b.e0x, b.ecx]))
+    alpha, beta = b.sweeps_rad()
     pairs = (
         np.array(
             [
-                [b.alpha_rad, b.beta_rad],
+                [alpha, beta],
                 [rows.mirror, rows.mirror],
                 [scale * r0, scale * r1],
                 [angles[0], angles[1]],

@@ -11,36 +11,122 @@ the bisectors of ``α`` at ``A0`` and of ``β`` at ``A1``. With the chord length
     r0 = |G − A0| / (2·sin(α/2))       r1 = |A1 − G| / (2·sin(β/2))
 
 Arc 0 turns through ``α`` from ``A0`` to ``G``, arc 1 through ``β`` from ``G`` to ``A1``; at ``G``
-both are tangent to the chord direction, so the pair is G1. Every quantity is formed from
-angle differences and factored point differences (``service.geometry.canonical``), so a short
-or nearly straight piece keeps full relative precision — ``V`` would be ill-conditioned there.
+both are tangent to the chord direction, so the pair is G1.
+
+Only ``+ − × ÷`` and square roots are used — each correctly rounded, in numpy as in Python —
+so :func:`biarc_terms` gives bit-identical results on floats (the one-spiral path,
+``service.geometry.subdivide_one``) and on arrays (the batch path). The directions are the
+unit vectors of ``(1 + k·w, m·w)`` (``service.geometry.canonical``); the half angles come from
+the exact cross products ``m·(w₂ − w₁)`` and the half-angle formulas, and point differences
+are factored, so a short or nearly straight piece keeps full relative precision — ``V``
+would be ill-conditioned there.
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Generic, NamedTuple, TypeVar
 
 import numpy as np
 
-from . import canonical
 from .types import FloatArray
+
+F = TypeVar("F", float, FloatArray)
+
+
+class BiarcTerms(NamedTuple, Generic[F]):
+    """What :func:`biarc_terms` computes for a piece ``[u0, u1]`` (floats or arrays).
+
+    ``e0``, ``ec``, ``e1`` are the unit directions at ``A0``, along the chord (= at ``G``) and
+    at ``A1``; ``cos_half_a``/``sin_half_a`` are those of ``α/2`` (likewise ``β``); ``join`` is
+    ``G − A0``, at distance ``join_distance``.
+    """
+
+    e0x: F
+    e0y: F
+    ecx: F
+    ecy: F
+    e1x: F
+    e1y: F
+    cos_half_a: F
+    sin_half_a: F
+    cos_half_b: F
+    sin_half_b: F
+    chord_length: F
+    join_distance: F
+    join_dx: F
+    join_dy: F
+    radius0: F
+    radius1: F
+
+
+def biarc_terms(k: F, m: F, u0: F, u1: F, sqrt: Callable[[F], F]) -> BiarcTerms[F]:
+    """The incentre biarc of ``[u0, u1]`` (``u0 < u1``) of the canonical spiral ``(k, m)``.
+
+    ``sqrt`` is ``math.sqrt`` for floats and ``np.sqrt`` for arrays. The chord is parallel to
+    the direction at ``w = σ/3`` (``σ = u0² + u0·u1 + u1²``) and ``A1 − A0 = 3h·(1 + k·σ/3,
+    m·σ/3)``, so ``L = 3h·‖(1 + k·σ/3, m·σ/3)‖``. ``cos(α/2) = √((1 + cos α)/2)`` has no
+    cancellation (``α < 90°``), and ``sin(α/2) = sin α / (2·cos(α/2))`` keeps the cross
+    product's relative precision.
+    """
+    h = u1 - u0
+    w0, w1 = u0 * u0, u1 * u1
+    w_chord = (w1 + u1 * u0 + w0) / 3.0
+    x0, y0 = 1.0 + k * w0, m * w0
+    xc, yc = 1.0 + k * w_chord, m * w_chord
+    x1, y1 = 1.0 + k * w1, m * w1
+    n0, nc, n1 = sqrt(x0 * x0 + y0 * y0), sqrt(xc * xc + yc * yc), sqrt(x1 * x1 + y1 * y1)
+    n0c, nc1 = n0 * nc, nc * n1
+    cos_half_a = sqrt(0.5 + 0.5 * ((x0 * xc + y0 * yc) / n0c))
+    cos_half_b = sqrt(0.5 + 0.5 * ((xc * x1 + yc * y1) / nc1))
+    # sin α = m·(w_chord − w0) / (n0·nc), w_chord − w0 = h·(u1 + 2·u0)/3 (and so for β).
+    sin_half_a = m * (h * (u1 + 2.0 * u0) / 3.0) / (n0c * (2.0 * cos_half_a))
+    sin_half_b = m * (h * (2.0 * u1 + u0) / 3.0) / (nc1 * (2.0 * cos_half_b))
+    chord_length = 3.0 * h * nc
+    chord_over_s = chord_length / (sin_half_a * cos_half_b + cos_half_a * sin_half_b)
+    join_distance = chord_over_s * sin_half_b
+    e0x, e0y = x0 / n0, y0 / n0
+    ecx, ecy = xc / nc, yc / nc
+    # The bisector of α is (e0 + ec) / (2·cos(α/2)).
+    along = join_distance / (2.0 * cos_half_a)
+    return BiarcTerms(
+        e0x=e0x,
+        e0y=e0y,
+        ecx=ecx,
+        ecy=ecy,
+        e1x=x1 / n1,
+        e1y=y1 / n1,
+        cos_half_a=cos_half_a,
+        sin_half_a=sin_half_a,
+        cos_half_b=cos_half_b,
+        sin_half_b=sin_half_b,
+        chord_length=chord_length,
+        join_distance=join_distance,
+        join_dx=along * (e0x + ecx),
+        join_dy=along * (e0y + ecy),
+        radius0=join_distance / (2.0 * sin_half_a),
+        radius1=chord_over_s * sin_half_a / (2.0 * sin_half_b),
+    )
 
 
 @dataclass(frozen=True, slots=True)
 class Biarcs:
-    """Incentre biarcs of pieces ``[u0, u1]``, one per array element, canonical frame.
-
-    ``phi0_rad``, ``chord_rad`` and ``phi1_rad`` are the directions at ``A0``, along the chord
-    (= at ``G``) and at ``A1``; ``join_dx``, ``join_dy`` is ``G − A0``.
-    """
+    """Incentre biarcs of pieces ``[u0, u1]``, one per array element, canonical frame (the
+    fields of :class:`BiarcTerms` as arrays, with the pieces' ends)."""
 
     u0: FloatArray
     u1: FloatArray
-    alpha_rad: FloatArray
-    beta_rad: FloatArray
-    phi0_rad: FloatArray
-    chord_rad: FloatArray
-    phi1_rad: FloatArray
+    e0x: FloatArray
+    e0y: FloatArray
+    ecx: FloatArray
+    ecy: FloatArray
+    e1x: FloatArray
+    e1y: FloatArray
+    cos_half_a: FloatArray
+    sin_half_a: FloatArray
+    cos_half_b: FloatArray
+    sin_half_b: FloatArray
     chord_length: FloatArray
     join_distance: FloatArray
     join_dx: FloatArray
@@ -48,43 +134,14 @@ class Biarcs:
     radius0: FloatArray
     radius1: FloatArray
 
+    def sweeps_rad(self) -> tuple[FloatArray, FloatArray]:
+        """``α`` and ``β``: the angles arc 0 and arc 1 turn through."""
+        return (
+            2.0 * np.arctan2(self.sin_half_a, self.cos_half_a),
+            2.0 * np.arctan2(self.sin_half_b, self.cos_half_b),
+        )
+
 
 def incentre_biarcs(k: FloatArray, m: FloatArray, u0: FloatArray, u1: FloatArray) -> Biarcs:
-    """The incentre biarc of each piece ``[u0, u1]`` (``u0 < u1``) of spirals ``(k, m)``.
-
-    The directions at ``u0``, along the chord and at ``u1`` are ``(1 + k·w, m·w)`` for
-    ``w = u0²``, ``σ/3`` and ``u1²`` (``σ = u0² + u0·u1 + u1²``), formed once; the angles
-    between them come from their exact cross products (as in ``canonical.turn_rad``).
-    """
-    h = u1 - u0
-    w0, w1 = u0 * u0, u1 * u1
-    sigma = w1 + u1 * u0 + w0
-    w_chord = sigma / 3.0  # the chord is parallel to (1 + k·w, m·w) here
-    x0, xc, x1 = 1.0 + k * w0, 1.0 + k * w_chord, 1.0 + k * w1
-    y0, yc, y1 = m * w0, m * w_chord, m * w1
-    alpha = np.arctan2(m * (h * (u1 + 2.0 * u0) / 3.0), x0 * xc + y0 * yc)
-    beta = np.arctan2(m * (h * (2.0 * u1 + u0) / 3.0), xc * x1 + yc * y1)
-    phi0 = np.arctan2(y0, x0)
-    chord_dir = phi0 + alpha
-    # Q(u1) − Q(u0) = h·(3 + k·σ, m·σ) (canonical.offset).
-    length = canonical.norm(h * (3.0 + k * sigma), h * m * sigma)
-    half_a, half_b = 0.5 * alpha, 0.5 * beta
-    sin_half_a, sin_half_b = np.sin(half_a), np.sin(half_b)
-    chord_over_s = length / np.sin(half_a + half_b)
-    d0 = chord_over_s * sin_half_b
-    bisector = phi0 + half_a
-    return Biarcs(
-        u0=u0,
-        u1=u1,
-        alpha_rad=alpha,
-        beta_rad=beta,
-        phi0_rad=phi0,
-        chord_rad=chord_dir,
-        phi1_rad=chord_dir + beta,
-        chord_length=length,
-        join_distance=d0,
-        join_dx=d0 * np.cos(bisector),
-        join_dy=d0 * np.sin(bisector),
-        radius0=d0 / (2.0 * sin_half_a),
-        radius1=chord_over_s * sin_half_a / (2.0 * sin_half_b),
-    )
+    """The incentre biarc of each piece ``[u0, u1]`` of spirals ``(k, m)`` (arrays)."""
+    return Biarcs(u0, u1, *biarc_terms(k, m, u0, u1, np.sqrt))

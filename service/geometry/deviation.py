@@ -1,18 +1,32 @@
 """Where the spiral passes between a biarc's arcs (Theorem 1) and its largest deviation
 from them (Theorem 2), paper §3–§4, in the canonical frame of ``service.geometry.canonical``.
+
+The arithmetic is written once, in functions that take floats or arrays alike (``+ − × ÷``
+and a square root passed in), so the one-spiral path (``service.geometry.subdivide_one``) and
+the batch path here give bit-identical numbers; only the choices between values (``np.where``
+here, ``if`` there) are written for each.
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Generic, NamedTuple, TypeVar
 
 import numpy as np
 import numpy.typing as npt
 
-from . import canonical
 from .biarc import Biarcs
 from .roots import polynomial_root
 from .types import FloatArray
+
+F = TypeVar("F", float, FloatArray)
+
+#: Newton steps before the first convergence test, for Theorem 1's cubic and Theorem 2's
+#: quartics: from the start points used here nearly every root is within the resolution after
+#: two steps (the cubic) or one (the quartics), which the next step confirms.
+SPLIT_FIXED_ITERATIONS = 3
+SIDE_FIXED_ITERATIONS = 2
 
 
 @dataclass(frozen=True, slots=True)
@@ -33,55 +47,130 @@ class Deviation:
     u: FloatArray
 
 
-def split_parameter(k: FloatArray, m: FloatArray, b: Biarcs) -> FloatArray:
-    """Theorem 1: the unique ``t ∈ (u0, u1)`` with ``(Q(t) − G)·H = 0``.
+class Cubic(NamedTuple, Generic[F]):
+    """``c3·v³ + c2·v² + c1·v + c0`` and a start for Newton."""
 
-    ``H`` is the chord direction. With ``v = t − u0`` and ``K = (k, m)·H`` the condition is the
-    cubic ``K·v³ + 3u0·K·v² + (3H_x + 3u0²·K)·v − (G − A0)·H = 0``, increasing on ``(0, u1 − u0)``
-    (the theorem's ``f' > 0``). ``(G − A0)·H = |G − A0|·cos(α/2)``.
+    c3: F
+    c2: F
+    c1: F
+    c0: F
+    start: F
+
+
+def split_cubic(
+    k: F, m: F, u0: F, h: F, ecx: F, ecy: F, cos_half_a: F, join_distance: F, chord_length: F
+) -> Cubic[F]:
+    """Theorem 1: ``t = u0 + v`` for the unique root ``v ∈ (0, h)`` of this cubic.
+
+    ``(Q(t) − G)·H = 0`` with the chord direction ``H = ec`` and ``K = (k, m)·H`` is
+    ``K·v³ + 3u0·K·v² + (3H_x + 3u0²·K)·v − (G − A0)·H = 0``, increasing on ``(0, h)`` (the
+    theorem's ``f' > 0``); ``(G − A0)·H = |G − A0|·cos(α/2)``. Newton starts where ``G``
+    projects on the chord, as a fraction of ``h``.
     """
-    hx, hy = np.cos(b.chord_rad), np.sin(b.chord_rad)
-    big_k = k * hx + m * hy
-    c2 = 3.0 * b.u0 * big_k
-    c1 = 3.0 * hx + 3.0 * b.u0 * b.u0 * big_k
-    c0 = -b.join_distance * np.cos(0.5 * b.alpha_rad)
+    big_k = k * ecx + m * ecy
+    c0 = -join_distance * cos_half_a
+    return Cubic(
+        c3=big_k,
+        c2=3.0 * u0 * big_k,
+        c1=3.0 * ecx + 3.0 * u0 * u0 * big_k,
+        c0=c0,
+        start=h * (-c0 / chord_length),
+    )
 
+
+class Quartic(NamedTuple, Generic[F]):
+    """Theorem 2's ``q_i(u) = a4·u⁴ + c3·u³ + c2·u² + c1·u + c0`` for arc ``i``, and the arc's
+    radius vector ``r·N = (−rs, rc)`` from its tangent point."""
+
+    a4: F
+    c3: F
+    c2: F
+    c1: F
+    c0: F
+    rs: F
+    rc: F
+
+
+def side_quartic(k: F, m: F, a4: F, ui: F, radius: F, ex: F, ey: F) -> Quartic[F]:
+    """Theorem 2: the quartic whose root in the side is the deviation's interior maximum.
+
+    ``q_i(u) = α1 + α2(u + u_i) + α3(u² + u·u_i + u_i²) + α4(u⁴ + u³u_i + u²u_i² + u·u_i³ +
+    u_i⁴)`` with, canonically, ``α1 = 3``, ``α2 = −(k, m)·C_i``, ``α3 = 4k``, ``α4 = a4 = k² +
+    m²``, expanded in ``u``. ``u_i`` is the arc's tangent point, where its unit tangent is
+    ``(ex, ey)``; the centre is ``Q(u_i) + r·N``, ``N = (−ey, ex)``.
+    """
+    rs, rc = radius * ey, radius * ex
+    ui2 = ui * ui
+    ax, ay = ui * (3.0 + k * ui2), m * ui2 * ui  # Q(u_i)
+    alpha2 = k * (rs - ax) - m * (ay + rc)
+    c2 = 4.0 * k + a4 * ui2
+    c1 = alpha2 + ui * c2
+    return Quartic(a4=a4, c3=a4 * ui, c2=c2, c1=c1, c0=3.0 + ui * c1, rs=rs, rc=rc)
+
+
+def quartic_value(q: Quartic[F], u: F) -> F:
+    return (((q.a4 * u + q.c3) * u + q.c2) * u + q.c1) * u + q.c0
+
+
+def secant(lo: F, hi: F, q_lo: F, q_hi: F) -> F:
+    """Where the chord of ``q`` over ``[lo, hi]`` crosses zero."""
+    return lo + (hi - lo) * q_lo / (q_lo - q_hi)
+
+
+def towards(x: F, q_x: F, end: F, q_end: F) -> F:
+    """The secant from ``x`` to the end of the sub-bracket where ``q`` has the other sign."""
+    return x + (end - x) * q_x / (q_x - q_end)
+
+
+def radial_gap(k: F, m: F, ui: F, u: F, q: Quartic[F], radius: F, sqrt: Callable[[F], F]) -> F:
+    """``|‖Q(u) − C‖ − r|`` for the circle tangent at ``Q(u_i)``.
+
+    With ``P = Q(u) − Q(u_i)`` (factored: ``(u − u_i)·(3 + k·σ, m·σ)``) and ``C = Q(u_i) +
+    r·N``, ``‖Q − C‖ − r = (‖P‖² − 2r·P·N) / (‖P − r·N‖ + r)``, free of the cancellation
+    between two nearly equal large numbers that the direct form suffers for large radii.
+    """
+    h = u - ui
+    sigma = u * u + u * ui + ui * ui
+    px, py = h * (3.0 + k * sigma), h * m * sigma
+    numerator = px * px + py * py + 2.0 * (px * q.rs - py * q.rc)
+    dx, dy = px + q.rs, py - q.rc
+    return abs(numerator) / (sqrt(dx * dx + dy * dy) + radius)
+
+
+def join_gap(k: F, m: F, u0: F, t: F, join_dx: F, join_dy: F, sqrt: Callable[[F], F]) -> F:
+    """``‖Q(t) − G‖``, the deviation at Theorem 1's ``t``, from ``Q(t) − A0`` factored."""
+    h = t - u0
+    sigma = t * t + t * u0 + u0 * u0
+    dx, dy = h * (3.0 + k * sigma) - join_dx, h * m * sigma - join_dy
+    return sqrt(dx * dx + dy * dy)
+
+
+def split_parameter(k: FloatArray, m: FloatArray, b: Biarcs) -> FloatArray:
+    """Theorem 1's ``t`` of each piece (:func:`split_cubic`)."""
     h = b.u1 - b.u0
-    start = h * (-c0 / b.chord_length)  # where G projects on the chord, as a parameter guess
-    v = polynomial_root((big_k, c2, c1, c0), np.zeros_like(h), h, start)
+    c = split_cubic(k, m, b.u0, h, b.ecx, b.ecy, b.cos_half_a, b.join_distance, b.chord_length)
+    coefficients = (c.c3, c.c2, c.c1, c.c0)
+    v = polynomial_root(coefficients, np.zeros_like(h), h, c.start, SPLIT_FIXED_ITERATIONS)
     return b.u0 + v
 
 
 def max_deviation(k: FloatArray, m: FloatArray, b: Biarcs, t: FloatArray) -> Deviation:
     """Theorem 2: the exact largest radial deviation of each piece from its biarc.
 
-    On side ``i`` the deviation's only interior maximum is at the root of the quartic
-    ``q_i(u) = α1 + α2(u + u_i) + α3(u² + u·u_i + u_i²) + α4(u⁴ + u³u_i + u²u_i² + u·u_i³ + u_i⁴)``
-    where ``u_i`` is the arc's tangent point; canonically ``α1 = 3``, ``α2 = −(k, m)·C_i``,
-    ``α3 = 4k``, ``α4 = k² + m²``. A sign change of ``q_i`` over the side brackets it; the
-    deviation at ``t`` is ``‖Q(t) − G‖``. Both sides are solved in one stacked array.
+    On each side the deviation's only interior maximum is at the root of
+    :func:`side_quartic`; a sign change of ``q_i`` over the side brackets it; the deviation at
+    ``t`` is ``‖Q(t) − G‖``. Both sides are solved in one stacked array.
     """
     n = t.shape[0]
-    ui = np.concatenate((b.u0, b.u1))
-    lo = np.concatenate((b.u0, t))
-    hi = np.concatenate((t, b.u1))
-    kk, mm = np.concatenate((k, k)), np.concatenate((m, m))
-    phi = np.concatenate((b.phi0_rad, b.phi1_rad))
-    r = np.concatenate((b.radius0, b.radius1))
-    # The centre is Q(u_i) + r·N with N = (−sin φ, cos φ): r·N = (−rs, rc).
-    rs, rc = r * np.sin(phi), r * np.cos(phi)
-    ui2 = ui * ui
-    ax, ay = ui * (3.0 + kk * ui2), mm * ui2 * ui  # Q(u_i), canonical.point
-    alpha2 = kk * (rs - ax) - mm * (ay + rc)
-    alpha4 = kk * kk + mm * mm
-    # q(u) = c0 + c1·u + c2·u² + c3·u³ + α4·u⁴ after expanding the symmetric sums in u_i
-    # (α3 = 4k); the slope's coefficients are formed once, not per Newton step.
-    c2 = 4.0 * kk + alpha4 * ui2
-    c1 = alpha2 + ui * c2
-    c0 = 3.0 + ui * c1
-    c3 = alpha4 * ui
-    q_lo = (((alpha4 * lo + c3) * lo + c2) * lo + c1) * lo + c0
-    q_hi = (((alpha4 * hi + c3) * hi + c2) * hi + c1) * hi + c0
+
+    def stack(first: FloatArray, second: FloatArray) -> FloatArray:
+        return np.concatenate((first, second))
+
+    ui, lo, hi = stack(b.u0, b.u1), stack(b.u0, t), stack(t, b.u1)
+    kk, mm = stack(k, k), stack(m, m)
+    r = stack(b.radius0, b.radius1)
+    q = side_quartic(kk, mm, kk * kk + mm * mm, ui, r, stack(b.e0x, b.e1x), stack(b.e0y, b.e1y))
+    q_lo, q_hi = quartic_value(q, lo), quartic_value(q, hi)
     bracketed = q_lo * q_hi < 0.0
     # Only bracketed sides have an interior maximum; solve for those alone (usually all).
     every = np.count_nonzero(bracketed) == bracketed.size
@@ -89,35 +178,24 @@ def max_deviation(k: FloatArray, m: FloatArray, b: Biarcs, t: FloatArray) -> Dev
     root = lo if every else lo.copy()
     w_lo, w_hi, w_q_lo = lo[which], hi[which], q_lo[which]
     if w_lo.size:
-        w_a4, w_c3, w_c2, w_c1, w_c0 = alpha4[which], c3[which], c2[which], c1[which], c0[which]
+        w_q = Quartic(*(c[which] for c in q))
         w_q_hi = q_hi[which]
-        secant = w_lo + (w_hi - w_lo) * w_q_lo / (w_q_lo - w_q_hi)
         # One step of false position: q can be strongly curved over a side (it is where the
         # side ends at u = 1), and the secant of the sub-bracket is a far better start.
-        q_s = (((w_a4 * secant + w_c3) * secant + w_c2) * secant + w_c1) * secant + w_c0
-        right = (q_s < 0.0) == (w_q_lo < 0.0)  # the root lies right of the secant point
-        # The sub-bracket is the secant point and the end where q has the other sign.
-        end, q_end = np.where(right, w_hi, w_lo), np.where(right, w_q_hi, w_q_lo)
-        secant = secant + (end - secant) * q_s / (q_s - q_end)
-        found = polynomial_root((w_a4, w_c3, w_c2, w_c1, w_c0), w_lo, w_hi, secant)
+        x = secant(w_lo, w_hi, w_q_lo, w_q_hi)
+        q_x = quartic_value(w_q, x)
+        right = (q_x < 0.0) == (w_q_lo < 0.0)  # the root lies right of the secant point
+        x = towards(x, q_x, np.where(right, w_hi, w_lo), np.where(right, w_q_hi, w_q_lo))
+        found = polynomial_root(w_q[:5], w_lo, w_hi, x, SIDE_FIXED_ITERATIONS)
         if every:
             root = found
         else:
             root[which] = found
-    # |‖Q(u) − C‖ − r| for the circle tangent at Q(u_i): with P = Q(u) − Q(u_i) and
-    # C = Q(u_i) + r·N, ‖Q − C‖ − r = (‖P‖² − 2r·P·N) / (‖P − r·N‖ + r), free of the
-    # cancellation between two nearly equal large numbers that the direct form suffers for
-    # large radii. P is formed in factored form (canonical.offset).
-    h = root - ui
-    sigma = root * root + root * ui + ui2
-    px, py = h * (3.0 + kk * sigma), h * mm * sigma
-    numerator = px * px + py * py + 2.0 * (px * rs - py * rc)
-    side = np.abs(numerator) / (canonical.norm(px + rs, py - rc) + r)
+    side = radial_gap(kk, mm, ui, root, q, r, np.sqrt)
     if not every:
         side = np.where(bracketed, side, 0.0)
 
-    tx, ty = canonical.offset(k, m, b.u0, t)
-    at_t = canonical.norm(tx - b.join_dx, ty - b.join_dy)
+    at_t = join_gap(k, m, b.u0, t, b.join_dx, b.join_dy, np.sqrt)
     arc0, arc1 = side[:n], side[n:]
     u_arc0 = np.where(arc0 > at_t, root[:n], t)
     u_arc1 = np.where(arc1 > at_t, root[n:], t)

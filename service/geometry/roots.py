@@ -1,4 +1,5 @@
-"""A vectorised, bracketed Newton iteration for one simple root per interval."""
+"""A vectorised, bracketed Newton iteration for one simple root per interval, and its
+one-element twins for cubics and quartics in Python floats (same iterates, same result)."""
 
 from __future__ import annotations
 
@@ -65,13 +66,19 @@ def bracketed_newton(
 
 
 def polynomial_root(
-    coefficients: Sequence[FloatArray], lo: FloatArray, hi: FloatArray, start: FloatArray
+    coefficients: Sequence[FloatArray],
+    lo: FloatArray,
+    hi: FloatArray,
+    start: FloatArray,
+    fixed_iterations: int = FIXED_ITERATIONS,
 ) -> FloatArray:
     """:func:`bracketed_newton` for the polynomials ``Σ coefficients[j]·x^(d−j)`` (highest
     degree first, one polynomial per element), evaluated by Horner's rule.
 
-    Same iteration and result as ``bracketed_newton``; knowing the polynomial lets the
-    safeguarded fallback evaluate only the elements it re-solves.
+    Same iteration and result as ``bracketed_newton``, with ``fixed_iterations`` steps
+    before the first convergence test (callers whose start points are better need fewer);
+    knowing the polynomial lets the safeguarded fallback evaluate only the elements it
+    re-solves.
     """
     resolution = RESOLUTION_ULPS * _EPS * np.maximum(np.abs(lo), np.abs(hi))
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
@@ -82,6 +89,7 @@ def polynomial_root(
             start,
             resolution,
             lambda rows: horner([c[rows] for c in coefficients]),
+            fixed_iterations,
         )
         good = np.isfinite(x)
         if np.count_nonzero(good) == good.size:
@@ -123,16 +131,17 @@ def _fast(
     start: FloatArray,
     resolution: FloatArray,
     restrict: Callable[[npt.NDArray[np.intp]], ValueAndSlope] | None = None,
+    fixed_iterations: int = FIXED_ITERATIONS,
 ) -> FloatArray:
     """Plain Newton steps; elements not done or outside their bracket come back as NaN.
 
-    Every element first takes ``FIXED_ITERATIONS`` steps with no per-step bookkeeping: fixed
+    Every element first takes ``fixed_iterations`` steps with no per-step bookkeeping: fixed
     work per element, so its result does not depend on the batch. An element whose last step
     was still above the resolution goes on, alone with the others like it, until its first
     step below the resolution, as long as ``FAST_ITERATIONS`` steps in all.
     """
     x = np.minimum(np.maximum(start, lo), hi)  # np.clip costs several times more
-    for _ in range(FIXED_ITERATIONS):
+    for _ in range(fixed_iterations):
         f, df = fn(x)
         step = f / df
         x = x - step
@@ -141,11 +150,13 @@ def _fast(
         if x.size <= SMALL:
             # Gathering a subset costs more than stepping every element of a small array;
             # the finished elements hold, so the result is the same either way.
-            x, done = _continue(fn, x, resolution, done)
+            x, done = _continue(fn, x, resolution, done, fixed_iterations)
         else:
             rest = np.flatnonzero(~done)
             part = restrict(rest) if restrict else _subset(fn, rest, x)
-            x[rest], done[rest] = _continue(part, x[rest], resolution[rest], done[rest])
+            x[rest], done[rest] = _continue(
+                part, x[rest], resolution[rest], done[rest], fixed_iterations
+            )
     good = done & (x >= lo) & (x <= hi)
     if np.count_nonzero(good) == good.size:
         return x
@@ -153,11 +164,15 @@ def _fast(
 
 
 def _continue(
-    fn: ValueAndSlope, x: FloatArray, resolution: FloatArray, done: npt.NDArray[np.bool_]
+    fn: ValueAndSlope,
+    x: FloatArray,
+    resolution: FloatArray,
+    done: npt.NDArray[np.bool_],
+    fixed_iterations: int,
 ) -> tuple[FloatArray, npt.NDArray[np.bool_]]:
     """Newton steps after the fixed ones for the elements not ``done``: each holds its value
     from its first step below the resolution, up to ``FAST_ITERATIONS`` steps in all."""
-    for _ in range(FAST_ITERATIONS - FIXED_ITERATIONS):
+    for _ in range(FAST_ITERATIONS - fixed_iterations):
         f, df = fn(x)
         step = f / df
         x = np.where(done, x, x - step)
@@ -204,3 +219,76 @@ def _safeguarded(
         if done.all():
             break
     return x
+
+
+def cubic_root(
+    c3: float, c2: float, c1: float, c0: float, lo: float, hi: float, x: float, fixed: int
+) -> float:
+    """:func:`polynomial_root` for one cubic, in floats (``fixed`` is its ``fixed_iterations``):
+    the same iterates and the same result (an element that needs the safeguarded iteration
+    gets it from the array version). Comparisons stand in for ``max``/``min``, which cost
+    more than the arithmetic here."""
+    a, b = abs(lo), abs(hi)
+    resolution = RESOLUTION_ULPS * _EPS * (a if a >= b else b)
+    x = lo if x < lo else x
+    start = x = hi if x > hi else x
+    s2, s1 = 3 * c3, 2 * c2
+    steps = 1  # while loops: range() objects cost more than these steps' arithmetic
+    while steps < fixed:
+        x = x - (((c3 * x + c2) * x + c1) * x + c0) / ((s2 * x + s1) * x + c1)
+        steps += 1
+    while steps <= FAST_ITERATIONS:
+        step = (((c3 * x + c2) * x + c1) * x + c0) / ((s2 * x + s1) * x + c1)
+        x = x - step
+        if abs(step) <= resolution:
+            if lo <= x <= hi:
+                return x
+            break
+        steps += 1
+    return _one_root((c3, c2, c1, c0), lo, hi, start, fixed)
+
+
+def quartic_root(
+    c4: float,
+    c3: float,
+    c2: float,
+    c1: float,
+    c0: float,
+    lo: float,
+    hi: float,
+    x: float,
+    fixed: int,
+) -> float:
+    """:func:`cubic_root` for one quartic."""
+    a, b = abs(lo), abs(hi)
+    resolution = RESOLUTION_ULPS * _EPS * (a if a >= b else b)
+    x = lo if x < lo else x
+    start = x = hi if x > hi else x
+    s3, s2, s1 = 4 * c4, 3 * c3, 2 * c2
+    steps = 1
+    while steps < fixed:
+        value = (((c4 * x + c3) * x + c2) * x + c1) * x + c0
+        x = x - value / (((s3 * x + s2) * x + s1) * x + c1)
+        steps += 1
+    while steps <= FAST_ITERATIONS:
+        value = (((c4 * x + c3) * x + c2) * x + c1) * x + c0
+        step = value / (((s3 * x + s2) * x + s1) * x + c1)
+        x = x - step
+        if abs(step) <= resolution:
+            if lo <= x <= hi:
+                return x
+            break
+        steps += 1
+    return _one_root((c4, c3, c2, c1, c0), lo, hi, start, fixed)
+
+
+def _one_root(
+    coefficients: tuple[float, ...], lo: float, hi: float, start: float, fixed: int
+) -> float:
+    """:func:`polynomial_root` on one-element arrays: elementwise, so the batch's result."""
+
+    def one(value: float) -> FloatArray:
+        return np.array([value])
+
+    root = polynomial_root([one(c) for c in coefficients], one(lo), one(hi), one(start), fixed)
+    return float(root[0])

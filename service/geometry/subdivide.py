@@ -25,6 +25,10 @@ IntArray = npt.NDArray[np.intp]
 #: in double precision stops the spiral (``precision`` failure) long before this.
 MAX_LEVELS = 2_000
 
+#: A piece whose split point lies within this many ulps (of its end) of either end cannot be
+#: split any further in double precision.
+STUCK_ULPS = 4.0
+
 _EPS = float(np.finfo(np.float64).eps)
 
 _T = TypeVar("_T", Biarcs, Deviation)
@@ -83,7 +87,7 @@ def subdivide(k: FloatArray, m: FloatArray, tolerance: FloatArray, max_biarcs: i
         going = np.flatnonzero(split)
         spiral, lo, hi, at = spiral[going], u0[going], u1[going], deviation.u[going]
         # A piece too short to split in double precision stops its spiral.
-        stuck = np.minimum(at - lo, hi - at) <= (4.0 * _EPS) * hi
+        stuck = np.minimum(at - lo, hi - at) <= STUCK_ULPS * _EPS * hi
         if np.count_nonzero(stuck):
             any_failed = True
             _fail(failure, failed, spiral[stuck], "precision")
