@@ -3,17 +3,14 @@
 Prints, for the paper's spiral at each Table 1 tolerance, µs per spiral for the core
 (``service.geometry.approximate``) and for ``bench/plain.py`` in the same run, with the arc
 counts of both (which must agree); then arcs/s over 10 000 random spirals at 1e-5 of their
-chord through ``approximate_many``, beside the plain version. Timings are the best of N runs
-(``time.perf_counter``), N chosen so that each measurement takes about half a second.
+chord through ``approximate_many``, beside the plain version. Timings are best times, the core and
+the plain version timed in turn (``bench/timing.py``) so that both see the same machine load.
 Run with ``make bench`` (or ``.venv/bin/python bench/core.py``); the tests do not run it.
 """
 
 from __future__ import annotations
 
-import math
 import sys
-import time
-from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
@@ -22,6 +19,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
 from plain import plain_approximate
+from timing import paired_best
 
 from service.geometry import Spiral, approximate, approximate_many
 
@@ -32,26 +30,12 @@ BATCH_SIZE = 10_000
 PLAIN_SUBSET = 500
 RELATIVE_TOLERANCE = 1e-5
 SEED = 20260522
-#: Seconds each measurement aims for (best of as many runs as fit).
-BUDGET_S = 0.5
+#: Seconds each comparison runs for (core and plain in turn, as many rounds as fit).
+BUDGET_S = 2.0
 
 SINGLE_TARGET = 10.0  # × plain, one spiral at 1e-5
 BATCH_TARGET_ARCS_PER_S = 1_000_000.0
 BATCH_TARGET = 50.0  # × plain
-
-
-def best_of(run: Callable[[], object], budget_s: float = BUDGET_S) -> float:
-    """Best wall time of ``run`` in seconds, repeated to fill about ``budget_s``."""
-    start = time.perf_counter()
-    run()
-    first = time.perf_counter() - start
-    repeats = max(5, min(10_000, math.ceil(budget_s / max(first, 1e-9))))
-    best = first
-    for _ in range(repeats):
-        start = time.perf_counter()
-        run()
-        best = min(best, time.perf_counter() - start)
-    return best
 
 
 Params = tuple[tuple[float, float], tuple[float, float], float, float]
@@ -90,11 +74,14 @@ def single() -> None:
             plain_approximate(PAPER["start"], PAPER["start_tangent"], 51.34, PAPER_CURVATURE, tol)
         )
         assert core_arcs == plain_arcs, f"arc counts differ at {tol}: {core_arcs} vs {plain_arcs}"
-        core = best_of(lambda tol=tol: approximate(paper, tol))
-        plain = best_of(
-            lambda tol=tol: plain_approximate(
-                PAPER["start"], PAPER["start_tangent"], 51.34, PAPER_CURVATURE, tol
-            )
+        core, plain = paired_best(
+            [
+                lambda tol=tol: approximate(paper, tol),
+                lambda tol=tol: plain_approximate(
+                    PAPER["start"], PAPER["start_tangent"], 51.34, PAPER_CURVATURE, tol
+                ),
+            ],
+            BUDGET_S,
         )
         ratio = plain / core
         print(f"{tol:>10g} {core_arcs:>5} {core * 1e6:>9.1f} {plain * 1e6:>9.1f} {ratio:>6.1f}×")
@@ -116,8 +103,6 @@ def batch() -> None:
     failures = [r for r in results if isinstance(r, Exception)]
     assert not failures, f"{len(failures)} spirals failed: {failures[0]}"
     arcs = sum(len(r) for r in results if not isinstance(r, Exception))
-    core = best_of(lambda: approximate_many(spirals, tolerances), budget_s=4.0)
-    core_rate = arcs / core
 
     subset = params[:PLAIN_SUBSET]
     sub_tol = tolerances[:PLAIN_SUBSET]
@@ -136,7 +121,8 @@ def batch() -> None:
         for (start, tangent, theta, curvature), tol in zip(subset, sub_tol, strict=True):
             plain_approximate(start, tangent, theta, curvature, tol)
 
-    plain = best_of(run_plain, budget_s=1.0)
+    core, plain = paired_best([lambda: approximate_many(spirals, tolerances), run_plain], 6.0)
+    core_rate = arcs / core
     plain_rate = plain_arcs / plain
     ratio = core_rate / plain_rate
     print()
@@ -158,7 +144,7 @@ def batch() -> None:
 
 
 def main() -> None:
-    print("arcspline core benchmark (one process, one core; best of N, ~0.5 s per figure)")
+    print("arcspline core benchmark (one process, one core; best times, core and plain in turn)")
     print()
     single()
     batch()

@@ -10,12 +10,14 @@ from __future__ import annotations
 
 import math
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+
+from timing import paired_best
 
 from service.geometry import ArcSpline, Spiral, approximate, approximate_many
 from tests.support import oracle
@@ -24,27 +26,6 @@ PAPER = Spiral.from_parameters(
     start=(1.5, 3.0), start_tangent=(1.0, 0.0), turn_angle_deg=51.34, end_curvature=0.41574
 )
 TOLERANCES = (0.1, 0.01, 1e-3, 1e-4, 1e-5)
-REPEATS = 15
-
-
-def _best_time(fn: object, repeats: int = REPEATS) -> float:
-    best = math.inf
-    for _ in range(repeats):
-        start = time.perf_counter()
-        fn()  # type: ignore[operator]
-        best = min(best, time.perf_counter() - start)
-    return best
-
-
-def _paired_times(first: object, second: object, repeats: int = REPEATS) -> tuple[float, float]:
-    """Best times of two calls timed alternately, so that both see the same machine load."""
-    best = [math.inf, math.inf]
-    for _ in range(repeats):
-        for j, fn in enumerate((first, second)):
-            start = time.perf_counter()
-            fn()  # type: ignore[operator]
-            best[j] = min(best[j], time.perf_counter() - start)
-    return best[0], best[1]
 
 
 def table1() -> None:
@@ -61,9 +42,12 @@ def table1() -> None:
             verdict = oracle.check(cp, spline, tol)
             assert not verdict.violations, verdict.describe()
             row.append((len(spline), verdict.deviation.max))
-        t0, t1 = _paired_times(
-            lambda t=tol: approximate(PAPER, t),  # type: ignore[misc]
-            lambda t=tol: approximate(PAPER, t, "fewest-arcs"),  # type: ignore[misc]
+        t0, t1 = paired_best(
+            [
+                lambda t=tol: approximate(PAPER, t),  # type: ignore[misc]
+                lambda t=tol: approximate(PAPER, t, "fewest-arcs"),  # type: ignore[misc]
+            ],
+            1.0,
         )
         (n0, d0), (n1, d1) = row
         print(
@@ -96,10 +80,12 @@ def random_table() -> None:
         results = approximate_many(spirals, tolerances, strategy)  # type: ignore[arg-type]
         assert all(isinstance(r, ArcSpline) for r in results)
         counts[strategy] = np.array([len(r) for r in results])  # type: ignore[arg-type]
-    seconds["subdivide"], seconds["fewest-arcs"] = _paired_times(
-        lambda: approximate_many(spirals, tolerances),
-        lambda: approximate_many(spirals, tolerances, "fewest-arcs"),
-        repeats=5,
+    seconds["subdivide"], seconds["fewest-arcs"] = paired_best(
+        [
+            lambda: approximate_many(spirals, tolerances),
+            lambda: approximate_many(spirals, tolerances, "fewest-arcs"),
+        ],
+        3.0,
     )
     sub, few = counts["subdivide"], counts["fewest-arcs"]
     print(f"\n{len(spirals)} random spirals (θ 1–89°, relative tolerance 1e-5–1e-1), one batch")
@@ -113,14 +99,17 @@ def random_table() -> None:
         f"time: subdivide {seconds['subdivide'] * 1e3:.1f} ms, fewest-arcs "
         f"{seconds['fewest-arcs'] * 1e3:.1f} ms, ratio {ratio:.0f}x"
     )
-    singles = [
-        _best_time(lambda s=s, t=t: approximate(s, t), 1)
+    pairs = [
+        paired_best(
+            [
+                lambda s=s, t=t: approximate(s, t),  # type: ignore[misc]
+                lambda s=s, t=t: approximate(s, t, "fewest-arcs"),  # type: ignore[misc]
+            ],
+            0.0,
+        )
         for s, t in zip(spirals[:40], tolerances, strict=False)
     ]
-    fewest = [
-        _best_time(lambda s=s, t=t: approximate(s, t, "fewest-arcs"), 1)
-        for s, t in zip(spirals[:40], tolerances, strict=False)
-    ]
+    singles, fewest = [p[0] for p in pairs], [p[1] for p in pairs]
     print(
         f"one spiral per call (first 40): subdivide {np.mean(singles) * 1e3:.2f} ms, fewest-arcs "
         f"{np.mean(fewest) * 1e3:.2f} ms, ratio {np.sum(fewest) / np.sum(singles):.0f}x"

@@ -10,12 +10,13 @@ from typing import Literal, get_args
 import numpy as np
 
 from . import canonical
-from .assemble import Frames, segment_columns, splines
+from .assemble import Frames, segment_columns, spiral_lengths, splines
+from .assemble_one import assemble_one
 from .errors import GeometryError
 from .fewest import fewest_batch
 from .spiral import Spiral
 from .subdivide import IntArray, Subdivision, subdivide
-from .subdivide_one import subdivide_one
+from .subdivide_one import kept, subdivide_one
 from .types import ArcSpline, BoolArray, FloatArray, SegmentColumns
 
 Strategy = Literal["subdivide", "fewest-arcs"]
@@ -137,15 +138,38 @@ def approximate_many(
 def _subdivide_batch(
     spirals: list[Spiral], tolerances: np.ndarray, limits: Limits, strategy: str
 ) -> list[ArcSpline | GeometryError]:
-    theta = np.array([s.turn_angle_rad for s in spirals], dtype=np.float64)
-    scale = np.array([s.a for s in spirals], dtype=np.float64)
-    margin = np.array([_rounding_margin(s) for s in spirals], dtype=np.float64)
+    theta, scale, margin = np.array(
+        [(s.turn_angle_rad, s.a, _rounding_margin(s)) for s in spirals], dtype=np.float64
+    ).T.reshape(3, -1)
     k, m = canonical.coefficients(theta)
-    outcome = _subdivision(k, m, (tolerances - margin) / scale, limits.max_segments // 2)
+    target = (tolerances - margin) / scale
+    max_biarcs = limits.max_segments // 2
+    lengths = spiral_lengths(k, m, scale)
+    outcome: Subdivision | None = None
+    if len(spirals) == 1:
+        # One spiral in floats (the same numbers, several times sooner), unless it needs the
+        # batch path's judgement: in subdividing, or in assembling.
+        one = float(k[0]), float(m[0])
+        rows = subdivide_one(*one, float(target[0]), max_biarcs)
+        if rows is not None:
+            spline = assemble_one(
+                rows,
+                spirals[0],
+                *one,
+                float(tolerances[0]),
+                float(lengths[0]),
+                strategy,
+                PLACEMENT_SCREEN_ULPS,
+            )
+            if spline is not None:
+                return [spline]
+            outcome = Subdivision(kept=kept(rows), failure=[""])
+    if outcome is None:
+        outcome = subdivide(k, m, target, max_biarcs)
     frames = Frames.of(spirals)
     columns = segment_columns(outcome.kept, k, m, frames)
     row_spiral = np.repeat(outcome.kept.spiral, 2)
-    done = splines(columns, row_spiral, spirals, tolerances, strategy)
+    done = splines(columns, row_spiral, lengths, tolerances, strategy)
     unplaceable = _any_per_spiral(
         _unplaceable_rows(columns, tolerances[row_spiral]), row_spiral, len(spirals)
     )
@@ -167,18 +191,6 @@ def _subdivide_batch(
         else:
             results.append(done[j])
     return results
-
-
-def _subdivision(
-    k: FloatArray, m: FloatArray, tolerance: FloatArray, max_biarcs: int
-) -> Subdivision:
-    """:func:`subdivide`, through :func:`subdivide_one` for a single spiral (the same biarcs,
-    several times sooner) unless that one needs the batch path's judgement."""
-    if k.shape[0] == 1:
-        kept = subdivide_one(float(k[0]), float(m[0]), float(tolerance[0]), max_biarcs)
-        if kept is not None:
-            return Subdivision(kept=kept, failure=[""])
-    return subdivide(k, m, tolerance, max_biarcs)
 
 
 def _any_per_spiral(rows: BoolArray, row_spiral: IntArray, n: int) -> BoolArray:

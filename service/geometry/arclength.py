@@ -49,5 +49,7 @@ def canonical_lengths(k: FloatArray, m: FloatArray, u0: float = 0.0, u1: float =
     u, weights = _panels(_levels(k), float(u0), float(u1))
     w = u * u
     speed = 3.0 * np.hypot(1.0 + k[:, None] * w[None, :], m[:, None] * w[None, :])
-    result: FloatArray = speed @ weights
+    # A reduction rather than `speed @ weights`: a BLAS call wakes OpenBLAS's threads, which
+    # then spin on the cores the worker pool needs.
+    result: FloatArray = np.add.reduce(speed * weights, axis=1)
     return result

@@ -99,8 +99,11 @@ def segment_columns(kept: Kept, k: FloatArray, m: FloatArray, frames: Frames) ->
     """Two rows per kept biarc (arc 0, then arc 1), in the order of ``kept``."""
     b, d, i = kept.biarcs, kept.deviation, kept.spiral
     n = i.shape[0]
-    kk, mm = k[i], m[i]
-    rows = frames.take(i)  # per-row frames, gathered once for all the mappings below
+    # A batch gathers one frame per row, once for all the mappings below; one spiral's frame
+    # (arrays of one element) broadcasts over its rows: elementwise the same arithmetic.
+    one = frames.scale.shape[0] == 1
+    kk, mm = (k, m) if one else (k[i], m[i])
+    rows = frames if one else frames.take(i)
     scale = rows.scale
     # The five canonical vectors Q(u0), Q(u1), G − A0 and the two radius vectors r·N mapped
     # in one stacked call (elementwise the same arithmetic as five separate mappings).
@@ -118,7 +121,7 @@ def segment_columns(kept: Kept, k: FloatArray, m: FloatArray, frames: Frames) ->
     join = a0 + world[2]
     # Pin the spiral's own end points: u = 0 maps to B0 exactly, u = 1 to the stored B3.
     at_end = b.u1 == 1.0
-    a1[at_end] = rows.end_point[at_end]
+    a1[at_end] = rows.end_point if one else rows.end_point[at_end]
     centre0 = a0 + world[3]
     centre1 = a1 + world[4]
 
@@ -135,7 +138,6 @@ def segment_columns(kept: Kept, k: FloatArray, m: FloatArray, frames: Frames) ->
         np.array(
             [
                 [alpha, beta],
-                [rows.mirror, rows.mirror],
                 [scale * r0, scale * r1],
                 [angles[0], angles[1]],
                 [scale * d.arc0, scale * d.arc1],
@@ -145,9 +147,11 @@ def segment_columns(kept: Kept, k: FloatArray, m: FloatArray, frames: Frames) ->
             ]
         )
         .transpose(0, 2, 1)
-        .reshape(8, 2 * n)
+        .reshape(7, 2 * n)
     )
-    sweep, mirror, radius, start_angle, max_dev = pairs[0], pairs[1], pairs[2], pairs[3], pairs[4]
+    sweep, radius, start_angle, max_dev = pairs[0], pairs[1], pairs[2], pairs[3]
+    mirror = rows.mirror if one else np.repeat(rows.mirror, 2)
+    scale_per_row = scale if one else np.repeat(scale, 2)
     start = interleave(a0, join)
     end = interleave(join, a1)
     is_arc = sweep > FLAT_SWEEP_RAD
@@ -159,7 +163,7 @@ def segment_columns(kept: Kept, k: FloatArray, m: FloatArray, frames: Frames) ->
         chord = end - start
         length = np.where(is_arc, length, np.hypot(chord[:, 0], chord[:, 1]))
         centre = np.where(is_arc[:, None], centre, 0.5 * (start + end))
-        flat = _flat_deviation(kept, k, m, is_arc) * np.repeat(scale, 2)
+        flat = _flat_deviation(kept, k, m, is_arc) * scale_per_row
         max_dev = np.where(is_arc, max_dev, flat)
         radius = np.where(is_arc, radius, np.inf)
         start_angle = np.where(is_arc, start_angle, 0.0)
@@ -173,10 +177,10 @@ def segment_columns(kept: Kept, k: FloatArray, m: FloatArray, frames: Frames) ->
         start_angle_rad=start_angle,
         sweep_rad=signed_sweep,
         length=length,
-        u_start=pairs[5],
-        u_end=pairs[6],
+        u_start=pairs[4],
+        u_end=pairs[5],
         max_deviation=max_dev,
-        u_at_max_deviation=pairs[7],
+        u_at_max_deviation=pairs[6],
     )
 
 
@@ -217,15 +221,19 @@ def _flat_deviation(
 def splines(
     columns: SegmentColumns,
     spiral_of_row: IntArray,
-    spirals: list[Spiral],
+    spiral_length: FloatArray,
     tolerances: FloatArray,
     strategy: str,
 ) -> list[ArcSpline]:
-    """Cut batch columns into one :class:`ArcSpline` per spiral (row views, no copies)."""
-    n = len(spirals)
+    """Cut batch columns into one :class:`ArcSpline` per spiral (row views, no copies);
+    ``spiral_length`` is each spiral's arc length (:func:`spiral_lengths`)."""
+    n = spiral_length.shape[0]
+    if n == 1 and len(columns):
+        one = stats_one(columns, float(spiral_length[0]), float(tolerances[0]))
+        return [ArcSpline(columns, one, float(tolerances[0]), strategy)]
     counts = np.bincount(spiral_of_row, minlength=n)
     bounds = np.concatenate(([0], np.cumsum(counts))).tolist()
-    stats = _stats(columns, counts, np.asarray(bounds), spirals, tolerances)
+    stats = _stats(columns, counts, np.asarray(bounds), spiral_length, tolerances)
     return [
         ArcSpline(columns=columns.rows(begin, end), stats=st, tolerance=tol, strategy=strategy)
         for begin, end, st, tol in zip(
@@ -238,12 +246,10 @@ def _stats(
     columns: SegmentColumns,
     counts: IntArray,
     bounds: IntArray,
-    spirals: list[Spiral],
+    spiral_length: FloatArray,
     tolerances: FloatArray,
 ) -> list[SplineStats]:
     """Per-spline statistics by segmented reductions over the batch columns."""
-    if counts.size == 1 and columns.is_arc.size:
-        return [_stats_one(columns, spirals, float(tolerances[0]))]
     starts = bounds[:-1]
     nonempty = counts > 0
     at = np.where(nonempty, starts, 0)
@@ -269,7 +275,6 @@ def _stats(
     first_max[owner[::-1]] = rows[::-1]
     u_max = columns.u_at_max_deviation
     u_at = np.where(first_max >= 0, u_max[first_max] if u_max.size else 0.0, 0.0)
-    lengths = spiral_lengths(spirals)
     # Plain Python numbers, converted once per column rather than once per value.
     arc_counts = arcs.tolist()
     min_r_list = [None if n == 0 else r for n, r in zip(arc_counts, min_r.tolist(), strict=True)]
@@ -294,7 +299,7 @@ def _stats(
             u_at.tolist(),
             (max_dev / tolerances).tolist(),
             mean_dev.tolist(),
-            lengths.tolist(),
+            spiral_length.tolist(),
             total.tolist(),
             min_r_list,
             max_r_list,
@@ -306,7 +311,7 @@ def _stats(
 _FIRST_ROW = np.zeros(1, dtype=np.intp)
 
 
-def _stats_one(columns: SegmentColumns, spirals: list[Spiral], tolerance: float) -> SplineStats:
+def stats_one(columns: SegmentColumns, spiral_length: float, tolerance: float) -> SplineStats:
     """:func:`_stats` for a batch of one non-empty spline, with whole-array reductions: the
     same numbers (sums by the same ``reduceat``; maxima, minima and the first maximum are
     exact) at a fraction of the calls."""
@@ -322,7 +327,7 @@ def _stats_one(columns: SegmentColumns, spirals: list[Spiral], tolerance: float)
         u_at_max_deviation=float(columns.u_at_max_deviation[int(np.argmax(dev))]),
         deviation_ratio=max_dev / tolerance,
         mean_segment_deviation=float(np.add.reduceat(dev, _FIRST_ROW)[0]) / segments,
-        spiral_length=float(spiral_lengths(spirals)[0]),
+        spiral_length=spiral_length,
         spline_length=float(np.add.reduceat(columns.length, _FIRST_ROW)[0]),
         min_radius=float(np.minimum.reduce(radius)) if arcs else None,
         max_radius=float(np.maximum.reduce(radius)) if arcs else None,
@@ -333,11 +338,8 @@ def _stats_one(columns: SegmentColumns, spirals: list[Spiral], tolerance: float)
 _LENGTH_BLOCK = 1024
 
 
-def spiral_lengths(spirals: list[Spiral]) -> FloatArray:
-    """Arc lengths of many spirals at once (``service.geometry.arclength``), times ``a``."""
-    table = np.array([(s.turn_angle_rad, s.a) for s in spirals], dtype=np.float64)
-    theta, scale = table.reshape(-1, 2).T
-    k, m = canonical.coefficients(theta)
+def spiral_lengths(k: FloatArray, m: FloatArray, scale: FloatArray) -> FloatArray:
+    """Arc lengths of spirals ``(k, m)`` of sizes ``scale`` (``service.geometry.arclength``)."""
     lengths = np.empty(k.shape[0])
     for begin in range(0, k.shape[0], _LENGTH_BLOCK):
         block = slice(begin, begin + _LENGTH_BLOCK)

@@ -25,7 +25,6 @@ would be ill-conditioned there.
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
 from typing import Generic, NamedTuple, TypeVar
 
 import numpy as np
@@ -110,10 +109,10 @@ def biarc_terms(k: F, m: F, u0: F, u1: F, sqrt: Callable[[F], F]) -> BiarcTerms[
     )
 
 
-@dataclass(frozen=True, slots=True)
-class Biarcs:
+class Biarcs(NamedTuple):
     """Incentre biarcs of pieces ``[u0, u1]``, one per array element, canonical frame (the
-    fields of :class:`BiarcTerms` as arrays, with the pieces' ends)."""
+    fields of :class:`BiarcTerms` as arrays, with the pieces' ends). A named tuple: built per
+    level and per spiral, it costs a fraction of a frozen dataclass."""
 
     u0: FloatArray
     u1: FloatArray

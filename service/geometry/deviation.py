@@ -10,7 +10,6 @@ here, ``if`` there) are written for each.
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
 from typing import Generic, NamedTuple, TypeVar
 
 import numpy as np
@@ -29,8 +28,7 @@ SPLIT_FIXED_ITERATIONS = 3
 SIDE_FIXED_ITERATIONS = 2
 
 
-@dataclass(frozen=True, slots=True)
-class Deviation:
+class Deviation(NamedTuple):
     """The largest radial deviation of each spiral piece from its biarc.
 
     ``split`` is Theorem 1's ``t``; ``arc0``/``arc1`` are the maxima over ``[u0, t]`` and

@@ -291,8 +291,10 @@ def fewest_batch(
     columns, rows = chain_columns([c for _, c in won], picked)
     strategy = baseline[won[0][0]].strategy  # type: ignore[union-attr]
     index = [j for j, _ in won]
+    # The spiral's length is the baseline's (the same spiral), not measured again.
+    lengths = np.array([baseline[j].stats.spiral_length for j in index])  # type: ignore[union-attr]
     for j, spline in zip(
-        index, splines(columns, rows, picked, tolerances[index], strategy), strict=True
+        index, splines(columns, rows, lengths, tolerances[index], strategy), strict=True
     ):
         out[j] = spline
     return out

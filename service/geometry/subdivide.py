@@ -9,8 +9,8 @@ keeps are exactly those of the depth-first recursion; they are put back in param
 
 from __future__ import annotations
 
-from dataclasses import dataclass, fields
-from typing import TypeVar
+from dataclasses import dataclass
+from typing import NamedTuple, TypeVar
 
 import numpy as np
 import numpy.typing as npt
@@ -34,8 +34,7 @@ _EPS = float(np.finfo(np.float64).eps)
 _T = TypeVar("_T", Biarcs, Deviation)
 
 
-@dataclass(frozen=True, slots=True)
-class Kept:
+class Kept(NamedTuple):
     """The biarcs a batch keeps, sorted by spiral then parameter (canonical frame)."""
 
     spiral: IntArray
@@ -130,8 +129,8 @@ def _ordered(
         empty = np.zeros(0)
         return Kept(
             spiral=np.zeros(0, dtype=np.intp),
-            biarcs=Biarcs(*([empty] * len(fields(Biarcs)))),
-            deviation=Deviation(*([empty] * len(fields(Deviation)))),
+            biarcs=Biarcs(*([empty] * len(Biarcs._fields))),
+            deviation=Deviation(*([empty] * len(Deviation._fields))),
         )
     spiral = np.concatenate([s for s, _, _, _ in levels])
     split = np.concatenate([o for _, _, _, o in levels])
@@ -144,7 +143,7 @@ def _ordered(
 
 
 def _take(columns: _T, index: npt.NDArray[np.bool_] | IntArray) -> _T:
-    return type(columns)(*(getattr(columns, f.name)[index] for f in fields(columns)))
+    return type(columns)(*(column[index] for column in columns))
 
 
 def _gather(parts: list[_T], order: IntArray) -> _T:
@@ -152,6 +151,4 @@ def _gather(parts: list[_T], order: IntArray) -> _T:
     first = parts[0]
     if len(parts) == 1:
         return _take(first, order)
-    return type(first)(
-        *(np.concatenate([getattr(p, f.name) for p in parts])[order] for f in fields(first))
-    )
+    return type(first)(*(np.concatenate(column)[order] for column in zip(*parts, strict=True)))

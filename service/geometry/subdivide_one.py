@@ -8,9 +8,11 @@ one-element Newton twins in ``service.geometry.roots``), the same operations in 
 order — correctly rounded in numpy as in Python — so the kept biarcs are bit-identical to
 those of :func:`service.geometry.subdivide.subdivide` for the same spiral.
 
-Anything out of the ordinary — a division by zero, a piece too short to split, the segment limit, a
-non-finite number — returns ``None``: the caller then runs the batch path, which decides
-those cases (and words their errors) the one way.
+Anything out of the ordinary — a division by zero, a piece too short to split, the segment
+limit, a NaN where the two paths' choices between values could differ — returns ``None``:
+the caller then runs the batch path, which decides those cases (and words their errors) the
+one way. Other non-finite numbers are kept exactly as the batch path keeps them and refused
+with its results.
 """
 
 from __future__ import annotations
@@ -22,43 +24,53 @@ import numpy as np
 from .biarc import Biarcs
 from .deviation import SIDE_FIXED_ITERATIONS, SPLIT_FIXED_ITERATIONS, Deviation
 from .roots import cubic_root, quartic_root
-from .subdivide import MAX_LEVELS, STUCK_ULPS, Kept
+from .subdivide import STUCK_ULPS, Kept
 
 _EPS = float(np.finfo(np.float64).eps)
+
+#: Pieces looked at before giving up: a spiral that needs more is subdivided faster by the
+#: batch path, whose numpy levels cost about as much as 20 pieces here, whatever their width.
+MAX_PIECES = 256
 
 #: A kept piece: the fields of ``Biarcs`` then those of ``Deviation``, in order.
 Row = tuple[float, ...]
 
 
-def subdivide_one(k: float, m: float, tolerance: float, max_biarcs: int) -> Kept | None:
+def subdivide_one(k: float, m: float, tolerance: float, max_biarcs: int) -> list[Row] | None:
     """The biarcs :func:`~service.geometry.subdivide.subdivide` keeps for the one spiral
-    ``(k, m)``, in parameter order, or ``None`` where that function must decide."""
+    ``(k, m)``, in parameter order, as rows (:func:`kept` turns them into its columns), or
+    ``None`` where that function must decide or is faster (beyond ``MAX_PIECES``)."""
     alpha4 = k * k + m * m
     kept: list[Row] = []
-    # A stack of (u0, u1, level): the top is the leftmost piece not yet looked at.
-    pending = [(0.0, 1.0, 0)]
+    # A stack: the top is the leftmost piece not yet looked at. No piece is deeper than
+    # MAX_PIECES < MAX_LEVELS, so the batch path's level cap cannot apply here.
+    pending = [(0.0, 1.0)]
     try:
-        while pending:
-            u0, u1, level = pending.pop()
+        for _ in range(MAX_PIECES):
+            if not pending:
+                return kept
+            u0, u1 = pending.pop()
             row = _piece(k, m, alpha4, u0, u1)
             value, at = row[-2], row[-1]
             if value > tolerance:  # the batch path's test, NaN included
-                level += 1
-                if min(at - u0, u1 - at) <= STUCK_ULPS * _EPS * u1 or level == MAX_LEVELS:
+                if min(at - u0, u1 - at) <= STUCK_ULPS * _EPS * u1:
                     return None
-                pending += ((at, u1, level), (u0, at, level))
+                pending += ((at, u1), (u0, at))
                 if len(kept) + len(pending) > max_biarcs:
                     return None
             else:
                 kept.append(row)
     except (ArithmeticError, ValueError):  # a division by zero, a math domain error
         return None
-    columns = np.array(kept).T
-    if not np.isfinite(columns).all():
-        return None
-    split = len(columns) - 7
+    return kept if not pending else None
+
+
+def kept(rows: list[Row]) -> Kept:
+    """The batch path's columns of these rows."""
+    columns = np.array(rows).T
+    split = len(Biarcs._fields)
     return Kept(
-        spiral=np.zeros(len(kept), dtype=np.intp),
+        spiral=np.zeros(len(rows), dtype=np.intp),
         biarcs=Biarcs(*columns[:split]),
         deviation=Deviation(*columns[split:]),
     )
@@ -177,4 +189,7 @@ def _side(
     gap = abs(numerator) / (math.sqrt(dx * dx + dy * dy) + radius)
     if gap > at_t:
         return gap, u
-    return at_t, t
+    if gap <= at_t:
+        return at_t, t
+    # A NaN gap: np.maximum would keep it where this comparison cannot; the batch decides.
+    raise FloatingPointError
