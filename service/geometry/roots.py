@@ -1,5 +1,4 @@
-"""A vectorised, bracketed Newton iteration for one simple root per interval, and its
-one-element twins for cubics and quartics in Python floats (same iterates, same result)."""
+"""A vectorised, bracketed Newton iteration for one simple root per interval."""
 
 from __future__ import annotations
 
@@ -221,68 +220,7 @@ def _safeguarded(
     return x
 
 
-def cubic_root(
-    c3: float, c2: float, c1: float, c0: float, lo: float, hi: float, x: float, fixed: int
-) -> float:
-    """:func:`polynomial_root` for one cubic, in floats (``fixed`` is its ``fixed_iterations``):
-    the same iterates and the same result (an element that needs the safeguarded iteration
-    gets it from the array version). Comparisons stand in for ``max``/``min``, which cost
-    more than the arithmetic here."""
-    a, b = abs(lo), abs(hi)
-    resolution = RESOLUTION_ULPS * _EPS * (a if a >= b else b)
-    x = lo if x < lo else x
-    start = x = hi if x > hi else x
-    s2, s1 = 3 * c3, 2 * c2
-    steps = 1  # while loops: range() objects cost more than these steps' arithmetic
-    while steps < fixed:
-        x = x - (((c3 * x + c2) * x + c1) * x + c0) / ((s2 * x + s1) * x + c1)
-        steps += 1
-    while steps <= FAST_ITERATIONS:
-        step = (((c3 * x + c2) * x + c1) * x + c0) / ((s2 * x + s1) * x + c1)
-        x = x - step
-        if abs(step) <= resolution:
-            if lo <= x <= hi:
-                return x
-            break
-        steps += 1
-    return _one_root((c3, c2, c1, c0), lo, hi, start, fixed)
-
-
-def quartic_root(
-    c4: float,
-    c3: float,
-    c2: float,
-    c1: float,
-    c0: float,
-    lo: float,
-    hi: float,
-    x: float,
-    fixed: int,
-) -> float:
-    """:func:`cubic_root` for one quartic."""
-    a, b = abs(lo), abs(hi)
-    resolution = RESOLUTION_ULPS * _EPS * (a if a >= b else b)
-    x = lo if x < lo else x
-    start = x = hi if x > hi else x
-    s3, s2, s1 = 4 * c4, 3 * c3, 2 * c2
-    steps = 1
-    while steps < fixed:
-        value = (((c4 * x + c3) * x + c2) * x + c1) * x + c0
-        x = x - value / (((s3 * x + s2) * x + s1) * x + c1)
-        steps += 1
-    while steps <= FAST_ITERATIONS:
-        value = (((c4 * x + c3) * x + c2) * x + c1) * x + c0
-        step = value / (((s3 * x + s2) * x + s1) * x + c1)
-        x = x - step
-        if abs(step) <= resolution:
-            if lo <= x <= hi:
-                return x
-            break
-        steps += 1
-    return _one_root((c4, c3, c2, c1, c0), lo, hi, start, fixed)
-
-
-def _one_root(
+def one_root(
     coefficients: tuple[float, ...], lo: float, hi: float, start: float, fixed: int
 ) -> float:
     """:func:`polynomial_root` on one-element arrays: elementwise, so the batch's result."""

@@ -4,9 +4,12 @@ A single spiral's recursion has a few dozen pieces spread over several levels; n
 per call (about half a microsecond, whatever the array's size) then outweighs the arithmetic,
 so one spiral is faster in plain floats, depth first. The arithmetic is the batch path's own
 (``biarc_terms``, ``split_cubic``, ``side_quartic``, ``radial_gap``, ``join_gap`` and the
-one-element Newton twins in ``service.geometry.roots``), the same operations in the same
-order — correctly rounded in numpy as in Python — so the kept biarcs are bit-identical to
-those of :func:`service.geometry.subdivide.subdivide` for the same spiral.
+Newton iteration of ``roots.polynomial_root``), written out inline — function calls cost
+more than arithmetic here — with the same operations in the same order, each correctly
+rounded in numpy as in Python; so the kept biarcs are bit-identical to those of
+:func:`service.geometry.subdivide.subdivide` for the same spiral (held so by
+tests/geometry/test_subdivide_one.py). A root the plain Newton steps miss is solved by the
+array version for that one element, safeguards and all.
 
 Anything out of the ordinary — a division by zero, a piece too short to split, the segment
 limit, a NaN where the two paths' choices between values could differ — returns ``None``:
@@ -23,10 +26,11 @@ import numpy as np
 
 from .biarc import Biarcs
 from .deviation import SIDE_FIXED_ITERATIONS, SPLIT_FIXED_ITERATIONS, Deviation
-from .roots import cubic_root, quartic_root
+from .roots import FAST_ITERATIONS, RESOLUTION_ULPS, one_root
 from .subdivide import STUCK_ULPS, Kept
 
 _EPS = float(np.finfo(np.float64).eps)
+_RESOLUTION = RESOLUTION_ULPS * _EPS
 
 #: Pieces looked at before giving up: a spiral that needs more is subdivided faster by the
 #: batch path, whose numpy levels cost about as much as 20 pieces here, whatever their width.
@@ -44,18 +48,20 @@ def subdivide_one(k: float, m: float, tolerance: float, max_biarcs: int) -> list
     kept: list[Row] = []
     # A stack: the top is the leftmost piece not yet looked at. No piece is deeper than
     # MAX_PIECES < MAX_LEVELS, so the batch path's level cap cannot apply here.
-    pending = [(0.0, 1.0)]
+    pending = [(_end(k, m, 0.0), _end(k, m, 1.0))]
     try:
         for _ in range(MAX_PIECES):
             if not pending:
                 return kept
-            u0, u1 = pending.pop()
-            row = _piece(k, m, alpha4, u0, u1)
+            end0, end1 = pending.pop()
+            row = _piece(k, m, alpha4, end0, end1)
             value, at = row[-2], row[-1]
             if value > tolerance:  # the batch path's test, NaN included
+                u0, u1 = end0[0], end1[0]
                 if min(at - u0, u1 - at) <= STUCK_ULPS * _EPS * u1:
                     return None
-                pending += ((at, u1), (u0, at))
+                middle = _end(k, m, at)
+                pending += ((middle, end1), (end0, middle))
                 if len(kept) + len(pending) > max_biarcs:
                     return None
             else:
@@ -76,19 +82,32 @@ def kept(rows: list[Row]) -> Kept:
     )
 
 
-def _piece(k: float, m: float, alpha4: float, u0: float, u1: float) -> Row:
+#: What a piece needs of one of its ends ``u`` (:func:`_end`): computed once per split point
+#: for both pieces that share it (the batch path computes the same numbers per piece).
+End = tuple[float, float, float, float, float, float, float, float, float]
+
+
+def _end(k: float, m: float, u: float) -> End:
+    """``u``, ``w = u²``, the direction ``(x, y) = (1 + k·w, m·w)``, its norm and unit vector,
+    and ``Q(u)`` (``canonical.point``)."""
+    w = u * u
+    x, y = 1.0 + k * w, m * w
+    n = math.sqrt(x * x + y * y)
+    return (u, w, x, y, n, x / n, y / n, u * (3.0 + k * w), m * w * u)
+
+
+def _piece(k: float, m: float, alpha4: float, end0: End, end1: End) -> Row:
     """One piece: ``biarc_terms``, ``split_parameter`` and ``max_deviation`` for one element,
     written out operation for operation (the function calls of the shared form cost more
     than the arithmetic here; tests/geometry/test_subdivide_one.py holds the two equal)."""
     sqrt = math.sqrt
+    u0, w0, x0, y0, n0, e0x, e0y, q0x, q0y = end0
+    u1, w1, x1, y1, n1, e1x, e1y, q1x, q1y = end1
     # biarc_terms
     h = u1 - u0
-    w0, w1 = u0 * u0, u1 * u1
     w_chord = (w1 + u1 * u0 + w0) / 3.0
-    x0, y0 = 1.0 + k * w0, m * w0
     xc, yc = 1.0 + k * w_chord, m * w_chord
-    x1, y1 = 1.0 + k * w1, m * w1
-    n0, nc, n1 = sqrt(x0 * x0 + y0 * y0), sqrt(xc * xc + yc * yc), sqrt(x1 * x1 + y1 * y1)
+    nc = sqrt(xc * xc + yc * yc)
     n0c, nc1 = n0 * nc, nc * n1
     cos_half_a = sqrt(0.5 + 0.5 * ((x0 * xc + y0 * yc) / n0c))
     cos_half_b = sqrt(0.5 + 0.5 * ((xc * x1 + yc * y1) / nc1))
@@ -97,9 +116,7 @@ def _piece(k: float, m: float, alpha4: float, u0: float, u1: float) -> Row:
     chord_length = 3.0 * h * nc
     chord_over_s = chord_length / (sin_half_a * cos_half_b + cos_half_a * sin_half_b)
     join_distance = chord_over_s * sin_half_b
-    e0x, e0y = x0 / n0, y0 / n0
     ecx, ecy = xc / nc, yc / nc
-    e1x, e1y = x1 / n1, y1 / n1
     along = join_distance / (2.0 * cos_half_a)
     join_dx, join_dy = along * (e0x + ecx), along * (e0y + ecy)
     radius0 = join_distance / (2.0 * sin_half_a)
@@ -109,15 +126,35 @@ def _piece(k: float, m: float, alpha4: float, u0: float, u1: float) -> Row:
     c0 = -join_distance * cos_half_a
     c2 = 3.0 * u0 * big_k
     c1 = 3.0 * ecx + 3.0 * u0 * u0 * big_k
-    v = cubic_root(big_k, c2, c1, c0, 0.0, h, h * (-c0 / chord_length), SPLIT_FIXED_ITERATIONS)
+    # roots.polynomial_root for this one cubic on [0, h]: the same iterates (its
+    # fixed_iterations, then until the first step within the resolution), the same result.
+    resolution = _RESOLUTION * abs(h)  # max(|0|, |h|)
+    v = h * (-c0 / chord_length)
+    v = 0.0 if v < 0.0 else v
+    start = v = h if v > h else v
+    s2, s1 = 3 * big_k, 2 * c2
+    steps = 1
+    while steps < SPLIT_FIXED_ITERATIONS:
+        v = v - (((big_k * v + c2) * v + c1) * v + c0) / ((s2 * v + s1) * v + c1)
+        steps += 1
+    while True:
+        step = (((big_k * v + c2) * v + c1) * v + c0) / ((s2 * v + s1) * v + c1)
+        v = v - step
+        if abs(step) <= resolution and 0.0 <= v <= h:
+            break
+        if steps == FAST_ITERATIONS or abs(step) <= resolution:
+            # Past the plain steps: the safeguarded iteration, from the array version.
+            v = one_root((big_k, c2, c1, c0), 0.0, h, start, SPLIT_FIXED_ITERATIONS)
+            break
+        steps += 1
     t = u0 + v
     # join_gap
     d = t - u0
     sigma = t * t + t * u0 + w0
     dx, dy = d * (3.0 + k * sigma) - join_dx, d * m * sigma - join_dy
     at_t = sqrt(dx * dx + dy * dy)
-    arc0, u_arc0 = _side(k, m, alpha4, u0, w0, u0, t, radius0, e0x, e0y, at_t, t)
-    arc1, u_arc1 = _side(k, m, alpha4, u1, w1, t, u1, radius1, e1x, e1y, at_t, t)
+    arc0, u_arc0 = _side(k, m, alpha4, u0, w0, q0x, q0y, u0, t, radius0, e0x, e0y, at_t, t)
+    arc1, u_arc1 = _side(k, m, alpha4, u1, w1, q1x, q1y, t, u1, radius1, e1x, e1y, at_t, t)
     value, at = (arc0, u_arc0) if arc0 >= arc1 else (arc1, u_arc1)
     return (
         u0,
@@ -154,6 +191,8 @@ def _side(
     alpha4: float,
     ui: float,
     ui2: float,
+    ax: float,
+    ay: float,
     lo: float,
     hi: float,
     radius: float,
@@ -165,7 +204,6 @@ def _side(
     """The largest deviation over one side and where it is: ``side_quartic``, the false
     position start, the root, ``radial_gap`` and the choice against the gap at ``t``."""
     rs, rc = radius * ey, radius * ex
-    ax, ay = ui * (3.0 + k * ui2), m * ui2 * ui
     alpha2 = k * (rs - ax) - m * (ay + rc)
     c2 = 4.0 * k + alpha4 * ui2
     c1 = alpha2 + ui * c2
@@ -180,7 +218,27 @@ def _side(
         x = x + (hi - x) * q_x / (q_x - q_hi)
     else:
         x = x + (lo - x) * q_x / (q_x - q_lo)
-    u = quartic_root(alpha4, c3, c2, c1, c0, lo, hi, x, SIDE_FIXED_ITERATIONS)
+    # The root in [lo, hi] as for the cubic above.
+    a, b = abs(lo), abs(hi)
+    resolution = _RESOLUTION * (a if a >= b else b)
+    x = lo if x < lo else x
+    start = u = hi if x > hi else x
+    s3, s2, s1 = 4 * alpha4, 3 * c3, 2 * c2
+    steps = 1
+    while steps < SIDE_FIXED_ITERATIONS:
+        value = (((alpha4 * u + c3) * u + c2) * u + c1) * u + c0
+        u = u - value / (((s3 * u + s2) * u + s1) * u + c1)
+        steps += 1
+    while True:
+        value = (((alpha4 * u + c3) * u + c2) * u + c1) * u + c0
+        step = value / (((s3 * u + s2) * u + s1) * u + c1)
+        u = u - step
+        if abs(step) <= resolution and lo <= u <= hi:
+            break
+        if steps == FAST_ITERATIONS or abs(step) <= resolution:
+            u = one_root((alpha4, c3, c2, c1, c0), lo, hi, start, SIDE_FIXED_ITERATIONS)
+            break
+        steps += 1
     d = u - ui
     sigma = u * u + u * ui + ui2
     px, py = d * (3.0 + k * sigma), d * m * sigma

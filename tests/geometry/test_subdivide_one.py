@@ -15,6 +15,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from service.geometry import canonical, roots
+from service.geometry import subdivide_one as subdivide_one_module
 from service.geometry.subdivide import MAX_LEVELS, Kept, subdivide
 from service.geometry.subdivide_one import MAX_PIECES, kept, subdivide_one
 from tests.geometry.test_properties import PROPERTY
@@ -71,13 +72,13 @@ def test_a_root_the_plain_steps_miss_comes_from_the_array_version(
     # Near θ = 90° the cubic of the piece [0, 1] has a near-double root: the float version
     # hands that one root to the safeguarded array iteration, and still agrees bit for bit.
     handed = []
-    original = roots._one_root
+    original = roots.one_root
 
     def counting(*args: object) -> float:
         handed.append(args)
         return original(*args)  # type: ignore[arg-type]
 
-    monkeypatch.setattr(roots, "_one_root", counting)
+    monkeypatch.setattr(subdivide_one_module, "one_root", counting)
     batch, one = _both(89.99, 1e-6)
     assert handed
     _assert_identical(batch, one)
