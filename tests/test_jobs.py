@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from service.gcode import GcodeOptions
-from service.geometry import DEFAULT_LIMITS, GeometryError, Limits, Spiral, approximate
+from service.geometry import DEFAULT_LIMITS, ArcSpline, GeometryError, Limits, Spiral, approximate
 from service.jobs import (
     ControlPointsSpec,
     Encoded,
@@ -140,7 +140,7 @@ def test_a_result_with_a_non_finite_number_is_refused_not_sent(column: str) -> N
     broken = getattr(spline.columns, column).copy()
     broken[1] = np.nan
     columns = dataclasses.replace(spline.columns, **{column: broken})
-    error = encode(dataclasses.replace(spline, columns=columns), None)
+    error = encode(ArcSpline(columns, spline.stats, spline.tolerance, spline.strategy), None)
     assert isinstance(error, GeometryError)
     assert (error.kind, error.field) == ("precision", "spiral")
 

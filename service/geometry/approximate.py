@@ -118,31 +118,59 @@ def approximate_many(
     if len(spirals) != len(tolerances):
         raise ValueError("spirals and tolerances differ in length")
     _check_strategy(strategy)
+    frames = Frames.of(spirals)
+    valid = _valid_tolerances(frames, tolerances, limits)
     results: list[ArcSpline | GeometryError | None] = [None] * len(spirals)
-    valid: list[int] = []
-    for j, (spiral, tolerance) in enumerate(zip(spirals, tolerances, strict=True)):
-        try:
-            _check_tolerance(spiral, tolerance, limits)
-            valid.append(j)
-        except GeometryError as error:
-            results[j] = error
-    if valid:
-        chosen = [spirals[j] for j in valid]
-        tol = np.array([tolerances[j] for j in valid], dtype=np.float64)
+    chosen = list(range(len(spirals)))
+    if not valid.all():
+        chosen = []
+        for j in range(len(spirals)):
+            try:
+                if not valid[j]:  # the exact reason, or a tolerance the fast test did not take
+                    _check_tolerance(spirals[j], tolerances[j], limits)
+            except GeometryError as error:
+                results[j] = error
+                continue
+            chosen.append(j)
+    if chosen:
+        if len(chosen) < len(spirals):
+            frames = frames.take(np.array(chosen, dtype=np.intp))
+        tol = np.array([tolerances[j] for j in chosen], dtype=np.float64)
         run = _fewest_batch if strategy == "fewest-arcs" else _subdivide_batch
-        for j, result in zip(valid, run(chosen, tol, limits, strategy), strict=True):
+        picked = [spirals[j] for j in chosen]
+        for j, result in zip(chosen, run(picked, frames, tol, limits, strategy), strict=True):
             results[j] = result
     return [r for r in results if r is not None]
 
 
+def _margins(frames: Frames) -> FloatArray:
+    """:func:`_rounding_margin` of each spiral."""
+    margin: FloatArray = ROUNDING_MARGIN_ULPS * _EPS * (frames.coordinate_scale + frames.chord)
+    return margin
+
+
+def _valid_tolerances(frames: Frames, tolerances: Sequence[float], limits: Limits) -> BoolArray:
+    """Which tolerances :func:`_check_tolerance` accepts, for the common case of floats, in
+    one vectorised test (the same arithmetic); ``False`` where it must look itself."""
+    if not all(type(t) is float for t in tolerances):
+        return np.zeros(len(tolerances), dtype=bool)
+    tol = np.array(tolerances, dtype=np.float64)
+    floor = np.maximum(limits.min_relative_tolerance * frames.chord, 4.0 * _margins(frames))
+    with np.errstate(invalid="ignore"):
+        valid: BoolArray = np.isfinite(tol) & (tol > 0.0) & (tol >= floor)
+    return valid
+
+
 def _subdivide_batch(
-    spirals: list[Spiral], tolerances: np.ndarray, limits: Limits, strategy: str
+    spirals: list[Spiral],
+    frames: Frames,
+    tolerances: FloatArray,
+    limits: Limits,
+    strategy: str,
 ) -> list[ArcSpline | GeometryError]:
-    theta, scale, margin = np.array(
-        [(s.turn_angle_rad, s.a, _rounding_margin(s)) for s in spirals], dtype=np.float64
-    ).T.reshape(3, -1)
+    theta, scale = frames.turn_angle_rad, frames.scale
     k, m = canonical.coefficients(theta)
-    target = (tolerances - margin) / scale
+    target = (tolerances - _margins(frames)) / scale
     max_biarcs = limits.max_segments // 2
     lengths = spiral_lengths(k, m, scale)
     outcome: Subdivision | None = None
@@ -166,7 +194,6 @@ def _subdivide_batch(
             outcome = Subdivision(kept=kept(rows), failure=[""])
     if outcome is None:
         outcome = subdivide(k, m, target, max_biarcs)
-    frames = Frames.of(spirals)
     columns = segment_columns(outcome.kept, k, m, frames)
     row_spiral = np.repeat(outcome.kept.spiral, 2)
     done = splines(columns, row_spiral, lengths, tolerances, strategy)
@@ -203,7 +230,16 @@ def _any_per_spiral(rows: BoolArray, row_spiral: IntArray, n: int) -> BoolArray:
 
 
 def _finite_rows(columns: SegmentColumns) -> BoolArray:
-    """A last guard: no result leaves the core with NaN or infinite numbers in it."""
+    """A last guard: no result leaves the core with NaN or infinite numbers in it.
+
+    One sum per column first: a sum is finite when every term is (it could overflow only
+    past 1e300, far beyond the core's bounds, and then the row-by-row test below decides).
+    """
+    is_arc = columns.is_arc
+    radius = columns.radius if is_arc.all() else np.where(is_arc, columns.radius, 0.0)
+    checked = (columns.start, columns.end, columns.max_deviation, columns.center, radius)
+    if math.isfinite(sum(float(np.add.reduce(c, axis=None)) for c in checked)):
+        return np.ones(len(columns), dtype=bool)
     circle = np.isfinite(columns.center).all(axis=1) & np.isfinite(columns.radius)
     finite: BoolArray = (
         np.isfinite(columns.start).all(axis=1)
@@ -220,7 +256,8 @@ def _unplaceable_rows(columns: SegmentColumns, tolerance: FloatArray) -> BoolArr
     The gap is a few ulps of ``‖C‖ + r``; only rows where ``PLACEMENT_SCREEN_ULPS`` of those
     would not fit are measured (nearly always none), the others certainly fit.
     """
-    size = np.abs(columns.center).max(axis=1) + columns.radius
+    centre = np.abs(columns.center)
+    size = np.maximum(centre[:, 0], centre[:, 1]) + columns.radius
     screen = columns.is_arc & (
         columns.max_deviation + PLACEMENT_SCREEN_ULPS * _EPS * size > tolerance
     )
@@ -265,13 +302,17 @@ def _unplaceable(tolerance: float, spline: ArcSpline) -> GeometryError:
 
 
 def _fewest_batch(
-    spirals: list[Spiral], tolerances: np.ndarray, limits: Limits, strategy: str
+    spirals: list[Spiral],
+    frames: Frames,
+    tolerances: FloatArray,
+    limits: Limits,
+    strategy: str,
 ) -> list[ArcSpline | GeometryError]:
     """Strategy "fewest-arcs" (``service.geometry.fewest``). Subdivision runs first: its result
     (or error) is kept wherever the greedy chain would not have fewer or equal segments."""
-    baseline = _subdivide_batch(spirals, tolerances, limits, strategy)
-    margin = np.array([_rounding_margin(s) for s in spirals], dtype=np.float64)
-    return fewest_batch(spirals, tolerances, tolerances - margin, baseline, limits.max_segments)
+    baseline = _subdivide_batch(spirals, frames, tolerances, limits, strategy)
+    target = tolerances - _margins(frames)
+    return fewest_batch(spirals, tolerances, target, baseline, limits.max_segments)
 
 
 def _failure(spiral: Spiral, tolerance: float, why: str, limits: Limits) -> GeometryError:

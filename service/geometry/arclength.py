@@ -48,7 +48,8 @@ def canonical_lengths(k: FloatArray, m: FloatArray, u0: float = 0.0, u1: float =
     """Length of each canonical spiral ``(k, m)`` over ``[u0, u1]`` (arrays of shape ``(n,)``)."""
     u, weights = _panels(_levels(k), float(u0), float(u1))
     w = u * u
-    speed = 3.0 * np.hypot(1.0 + k[:, None] * w[None, :], m[:, None] * w[None, :])
+    x, y = 1.0 + k[:, None] * w[None, :], m[:, None] * w[None, :]
+    speed = 3.0 * np.sqrt(x * x + y * y)  # a few times faster than np.hypot, within an ulp
     # A reduction rather than `speed @ weights`: a BLAS call wakes OpenBLAS's threads, which
     # then spin on the cores the worker pool needs.
     result: FloatArray = np.add.reduce(speed * weights, axis=1)

@@ -7,7 +7,9 @@ angles map to ``φ + σ·angle``, sweeps to ``σ·sweep``, lengths and deviation
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+import itertools
+from collections.abc import Sequence
+from dataclasses import dataclass, fields
 
 import numpy as np
 import numpy.typing as npt
@@ -29,7 +31,9 @@ ALL = slice(None)
 
 @dataclass(frozen=True, slots=True)
 class Frames:
-    """The similarity of each spiral of a batch: origin, scale, start direction, mirror."""
+    """The similarity of each spiral of a batch (origin, scale, start direction, mirror), its
+    stored end point ``B3``, and what the core checks and scales by: turn angle, chord and
+    coordinate scale. One row per spiral."""
 
     origin: FloatArray
     scale: FloatArray
@@ -38,14 +42,29 @@ class Frames:
     phi_rad: FloatArray
     mirror: FloatArray
     end_point: FloatArray
+    turn_angle_rad: FloatArray
+    chord: FloatArray
+    coordinate_scale: FloatArray
 
     @classmethod
-    def of(cls, spirals: list[Spiral]) -> Frames:
-        # One pass over the spirals, one array: (B0, T0, a, σ) per row; B3 as stored.
+    def of(cls, spirals: Sequence[Spiral]) -> Frames:
+        # One pass over the spirals, one array: (B0, T0, a, σ, θ, chord, scale) per row; B3
+        # as stored.
         table = np.array(
-            [(*s.start, *s.start_tangent, s.a, s.turn_direction) for s in spirals],
+            [
+                (
+                    *s.start,
+                    *s.start_tangent,
+                    s.a,
+                    s.turn_direction,
+                    s.turn_angle_rad,
+                    s.chord,
+                    s.coordinate_scale,
+                )
+                for s in spirals
+            ],
             dtype=np.float64,
-        ).reshape(-1, 6)
+        ).reshape(-1, 9)
         end_point = np.array([s.control_points[3] for s in spirals], dtype=np.float64)
         return cls(
             origin=table[:, 0:2],
@@ -55,19 +74,14 @@ class Frames:
             phi_rad=np.arctan2(table[:, 3], table[:, 2]),
             mirror=table[:, 5],
             end_point=end_point.reshape(-1, 2),
+            turn_angle_rad=table[:, 6],
+            chord=table[:, 7],
+            coordinate_scale=table[:, 8],
         )
 
     def take(self, i: IntArray) -> Frames:
         """The frames of spirals ``i``, one row each: gathered once, then indexed by ``ALL``."""
-        return Frames(
-            origin=self.origin[i],
-            scale=self.scale[i],
-            cos_phi=self.cos_phi[i],
-            sin_phi=self.sin_phi[i],
-            phi_rad=self.phi_rad[i],
-            mirror=self.mirror[i],
-            end_point=self.end_point[i],
-        )
+        return Frames(*(getattr(self, f.name)[i] for f in fields(self)))
 
     def point(self, i: IntArray | slice, x: FloatArray, y: FloatArray) -> FloatArray:
         """World points of canonical points ``(x, y)`` of spirals ``i``."""
@@ -235,9 +249,9 @@ def splines(
     bounds = np.concatenate(([0], np.cumsum(counts))).tolist()
     stats = _stats(columns, counts, np.asarray(bounds), spiral_length, tolerances)
     return [
-        ArcSpline(columns=columns.rows(begin, end), stats=st, tolerance=tol, strategy=strategy)
-        for begin, end, st, tol in zip(
-            bounds[:-1], bounds[1:], stats, tolerances.tolist(), strict=True
+        ArcSpline(columns, st, tol, strategy, rows)
+        for rows, st, tol in zip(
+            itertools.pairwise(bounds), stats, tolerances.tolist(), strict=True
         )
     ]
 
@@ -279,28 +293,18 @@ def _stats(
     arc_counts = arcs.tolist()
     min_r_list = [None if n == 0 else r for n, r in zip(arc_counts, min_r.tolist(), strict=True)]
     max_r_list = [None if n == 0 else r for n, r in zip(arc_counts, max_r.tolist(), strict=True)]
+    # Positional, in SplineStats' field order: keywords cost a third more per spline.
     return [
-        SplineStats(
-            arc_count=n_arc,
-            line_count=n_seg - n_arc,
-            max_deviation=mx,
-            u_at_max_deviation=u,
-            deviation_ratio=ratio,
-            mean_segment_deviation=mean,
-            spiral_length=length,
-            spline_length=spline,
-            min_radius=r_min,
-            max_radius=r_max,
-        )
-        for n_arc, n_seg, mx, u, ratio, mean, length, spline, r_min, r_max in zip(
+        SplineStats(n_arc, n_seg - n_arc, *rest)
+        for n_arc, n_seg, *rest in zip(
             arc_counts,
             counts.tolist(),
-            max_dev.tolist(),
-            u_at.tolist(),
-            (max_dev / tolerances).tolist(),
-            mean_dev.tolist(),
+            max_dev.tolist(),  # max_deviation
+            u_at.tolist(),  # u_at_max_deviation
+            (max_dev / tolerances).tolist(),  # deviation_ratio
+            mean_dev.tolist(),  # mean_segment_deviation
             spiral_length.tolist(),
-            total.tolist(),
+            total.tolist(),  # spline_length
             min_r_list,
             max_r_list,
             strict=True,

@@ -165,18 +165,72 @@ class SplineStats:
         return self.arc_count + self.line_count
 
 
-@dataclass(frozen=True, slots=True)
 class ArcSpline:
-    """The result of approximating one spiral: its segments in order, and statistics."""
+    """The result of approximating one spiral: its segments in order, and statistics.
 
-    columns: SegmentColumns
-    stats: SplineStats
-    tolerance: float
-    strategy: str
+    Immutable: its attributes are read-only properties. The splines of a batch share the
+    batch's columns: ``columns`` are views of this spline's rows, made on first use, so a
+    batch of thousands makes no per-spline arrays that nobody reads; :meth:`batch_rows` gives
+    the shared columns and the rows, for consumers that work on whole batches.
+    """
+
+    __slots__ = ("_batch", "_begin", "_columns", "_end", "_stats", "_strategy", "_tolerance")
+
+    def __init__(
+        self,
+        columns: SegmentColumns,
+        stats: SplineStats,
+        tolerance: float,
+        strategy: str,
+        rows: tuple[int, int] | None = None,
+    ) -> None:
+        """The spline of ``columns``, or of ``columns``' rows ``rows = (begin, end)``."""
+        self._batch = columns
+        if rows is None:
+            self._begin, self._end = 0, len(columns)
+            self._columns: SegmentColumns | None = columns
+        else:
+            self._begin, self._end = rows
+            self._columns = None
+        self._stats = stats
+        self._tolerance = tolerance
+        self._strategy = strategy
+
+    @property
+    def columns(self) -> SegmentColumns:
+        if self._columns is None:
+            self._columns = self._batch.rows(self._begin, self._end)
+        return self._columns
+
+    @property
+    def stats(self) -> SplineStats:
+        return self._stats
+
+    @property
+    def tolerance(self) -> float:
+        return self._tolerance
+
+    @property
+    def strategy(self) -> str:
+        return self._strategy
+
+    def batch_rows(self) -> tuple[SegmentColumns, int, int]:
+        """The columns this spline's rows are part of, and its rows ``begin:end`` in them."""
+        return self._batch, self._begin, self._end
 
     @property
     def segments(self) -> tuple[Segment, ...]:
-        return tuple(self.columns.segment(i) for i in range(len(self.columns)))
+        return tuple(self.columns.segment(i) for i in range(len(self)))
 
     def __len__(self) -> int:
-        return len(self.columns)
+        return self._end - self._begin
+
+    def __reduce__(self) -> tuple[type[ArcSpline], tuple[SegmentColumns, SplineStats, float, str]]:
+        # Pickled with its own rows only (copies of the views), not the whole batch.
+        return ArcSpline, (self.columns, self.stats, self.tolerance, self.strategy)
+
+    def __repr__(self) -> str:
+        return (
+            f"ArcSpline({len(self)} segments, stats={self.stats!r}, "
+            f"tolerance={self.tolerance!r}, strategy={self.strategy!r})"
+        )

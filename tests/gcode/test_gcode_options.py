@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import dataclasses
 import math
 import pickle
 from typing import Any
@@ -17,7 +16,7 @@ from service.gcode import (
     GcodeOptions,
     write_program,
 )
-from service.geometry import Spiral, approximate
+from service.geometry import ArcSpline, Spiral, approximate
 
 from .cases import spiral, spline
 
@@ -105,7 +104,7 @@ def test_spline_that_breaks_its_stated_tolerance_is_refused_not_written() -> Non
     # A real approximation labelled with a tolerance it does not keep: the writer measures
     # every block itself and will not vouch for the program.
     real = spline("paper")
-    mislabelled = dataclasses.replace(real, tolerance=real.tolerance / 100)
+    mislabelled = ArcSpline(real.columns, real.stats, real.tolerance / 100, real.strategy)
     with pytest.raises(GcodeError) as caught:
         write_program(mislabelled, spiral("paper"), GcodeOptions(feed_rate=600, decimals=6))
     assert caught.value.field == "decimals"
