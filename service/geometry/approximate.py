@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Literal, get_args
+from typing import Literal, NamedTuple, get_args
 
 import numpy as np
 
@@ -15,7 +15,7 @@ from .assemble_one import assemble_one
 from .errors import GeometryError
 from .fewest import fewest_batch
 from .spiral import Spiral
-from .subdivide import IntArray, Subdivision, subdivide
+from .subdivide import IntArray, Kept, merge, subdivide
 from .subdivide_one import kept, subdivide_one
 from .types import ArcSpline, BoolArray, FloatArray, SegmentColumns
 
@@ -168,56 +168,112 @@ def _subdivide_batch(
     limits: Limits,
     strategy: str,
 ) -> list[ArcSpline | GeometryError]:
-    theta, scale = frames.turn_angle_rad, frames.scale
-    k, m = canonical.coefficients(theta)
-    target = (tolerances - _margins(frames)) / scale
+    """Strategy "subdivide": each spiral in floats (``subdivide_one``, ``assemble_one``)
+    while the batch is small, the rest with numpy (``subdivide``, ``segment_columns``); the
+    two give the same numbers, so the split only decides the cost."""
+    n = len(spirals)
+    k, m = canonical.coefficients(frames.turn_angle_rad)
+    target = (tolerances - _margins(frames)) / frames.scale
     max_biarcs = limits.max_segments // 2
-    lengths = spiral_lengths(k, m, scale)
-    outcome: Subdivision | None = None
-    if len(spirals) == 1:
-        # One spiral in floats (the same numbers, several times sooner), unless it needs the
-        # batch path's judgement: in subdividing, or in assembling.
-        one = float(k[0]), float(m[0])
-        rows = subdivide_one(*one, float(target[0]), max_biarcs)
-        if rows is not None:
-            spline = assemble_one(
-                rows,
-                spirals[0],
-                *one,
-                float(tolerances[0]),
-                float(lengths[0]),
-                strategy,
-                PLACEMENT_SCREEN_ULPS,
-            )
-            if spline is not None:
-                return [spline]
-            outcome = Subdivision(kept=kept(rows), failure=[""])
-    if outcome is None:
-        outcome = subdivide(k, m, target, max_biarcs)
-    columns = segment_columns(outcome.kept, k, m, frames)
-    row_spiral = np.repeat(outcome.kept.spiral, 2)
-    done = splines(columns, row_spiral, lengths, tolerances, strategy)
-    unplaceable = _any_per_spiral(
-        _unplaceable_rows(columns, tolerances[row_spiral]), row_spiral, len(spirals)
-    )
-    overflowed = _any_per_spiral(~_finite_rows(columns), row_spiral, len(spirals))
-    results: list[ArcSpline | GeometryError] = []
-    for j, why in enumerate(outcome.failure):
-        if why:
-            results.append(_failure(spirals[j], float(tolerances[j]), why, limits))
-        elif overflowed[j]:
-            results.append(
-                GeometryError(
-                    "tolerance",
-                    "the arc spline overflowed double precision for this spiral",
-                    kind="precision",
-                )
-            )
-        elif unplaceable[j]:
-            results.append(_unplaceable(float(tolerances[j]), done[j]))
+    lengths = spiral_lengths(k, m, frames.scale)
+    results: list[ArcSpline | GeometryError | None] = [None] * n
+    subdivided: list[Kept] = []  # in floats, to be assembled with numpy
+    rest: list[int] = []  # to be subdivided with numpy
+    floats = True
+    for j in range(n):
+        rows = (
+            subdivide_one(float(k[j]), float(m[j]), float(target[j]), max_biarcs)
+            if floats
+            else None
+        )
+        if rows is None:
+            rest.append(j)
+            continue
+        floats = _floats_cheaper(2 * len(rows) - 1, n - 1 - j)
+        spline = assemble_one(
+            rows,
+            spirals[j],
+            float(k[j]),
+            float(m[j]),
+            float(tolerances[j]),
+            float(lengths[j]),
+            strategy,
+            PLACEMENT_SCREEN_ULPS,
+        )
+        if spline is None:
+            subdivided.append(kept(rows, j))
         else:
-            results.append(done[j])
-    return results
+            results[j] = spline
+    failure = [""] * n
+    if rest:
+        index = np.array(rest, dtype=np.intp)
+        outcome = subdivide(k[index], m[index], target[index], max_biarcs)
+        for j, why in zip(rest, outcome.failure, strict=True):
+            failure[j] = why
+        subdivided.append(outcome.kept._replace(spiral=index[outcome.kept.spiral]))
+    if subdivided:
+        batch = _Batch(spirals, frames, k, m, tolerances, lengths, strategy, limits)
+        _assemble(merge(subdivided), failure, batch, results)
+    done = [r for r in results if r is not None]
+    assert len(done) == n, "every spiral has a result"
+    return done
+
+
+def _floats_cheaper(pieces: int, remaining: int) -> bool:
+    """Whether ``remaining`` more spirals like one of ``pieces`` pieces are cheaper in floats
+    than with numpy: a cost model, in the time of one piece in floats (measured here: a
+    spiral costs about 9 more in floats; numpy's subdivision and assembly about 150 plus 1.5
+    per piece of one spiral, whatever the batch's size). Either way the numbers are the same.
+    """
+    return remaining * (pieces + 9) <= 150 + 1.5 * pieces
+
+
+class _Batch(NamedTuple):
+    """What the numpy assembly needs of a batch, one row per spiral."""
+
+    spirals: list[Spiral]
+    frames: Frames
+    k: FloatArray
+    m: FloatArray
+    tolerances: FloatArray
+    lengths: FloatArray
+    strategy: str
+    limits: Limits
+
+
+def _assemble(
+    kept_biarcs: Kept,
+    failure: list[str],
+    batch: _Batch,
+    results: list[ArcSpline | GeometryError | None],
+) -> None:
+    """The numpy assembly of the spirals ``kept_biarcs`` names and of those that failed
+    (``failure``), into ``results``."""
+    spirals, tolerances = batch.spirals, batch.tolerances
+    failed = [j for j, why in enumerate(failure) if why]
+    which = np.union1d(kept_biarcs.spiral, np.array(failed, dtype=np.intp))
+    sub = kept_biarcs._replace(spiral=np.searchsorted(which, kept_biarcs.spiral))
+    frames = batch.frames if which.size == len(spirals) else batch.frames.take(which)
+    columns = segment_columns(sub, batch.k[which], batch.m[which], frames)
+    row_spiral = np.repeat(sub.spiral, 2)
+    tol = tolerances[which]
+    done = splines(columns, row_spiral, batch.lengths[which], tol, batch.strategy)
+    count = which.size
+    unplaceable = _any_per_spiral(_unplaceable_rows(columns, tol[row_spiral]), row_spiral, count)
+    overflowed = _any_per_spiral(~_finite_rows(columns), row_spiral, count)
+    for i, j in enumerate(which.tolist()):
+        if failure[j]:
+            results[j] = _failure(spirals[j], float(tolerances[j]), failure[j], batch.limits)
+        elif overflowed[i]:
+            results[j] = GeometryError(
+                "tolerance",
+                "the arc spline overflowed double precision for this spiral",
+                kind="precision",
+            )
+        elif unplaceable[i]:
+            results[j] = _unplaceable(float(tolerances[j]), done[i])
+        else:
+            results[j] = done[i]
 
 
 def _any_per_spiral(rows: BoolArray, row_spiral: IntArray, n: int) -> BoolArray:

@@ -48,8 +48,7 @@ class Frames:
 
     @classmethod
     def of(cls, spirals: Sequence[Spiral]) -> Frames:
-        # One pass over the spirals, one array: (B0, T0, a, σ, θ, chord, scale) per row; B3
-        # as stored.
+        # One pass over the spirals, one array: (B0, T0, a, σ, θ, chord, scale, B3) per row.
         table = np.array(
             [
                 (
@@ -60,12 +59,12 @@ class Frames:
                     s.turn_angle_rad,
                     s.chord,
                     s.coordinate_scale,
+                    *s.end_point,
                 )
                 for s in spirals
             ],
             dtype=np.float64,
-        ).reshape(-1, 9)
-        end_point = np.array([s.control_points[3] for s in spirals], dtype=np.float64)
+        ).reshape(-1, 11)
         return cls(
             origin=table[:, 0:2],
             scale=table[:, 4],
@@ -73,7 +72,7 @@ class Frames:
             sin_phi=table[:, 3],
             phi_rad=np.arctan2(table[:, 3], table[:, 2]),
             mirror=table[:, 5],
-            end_point=end_point.reshape(-1, 2),
+            end_point=table[:, 9:11],
             turn_angle_rad=table[:, 6],
             chord=table[:, 7],
             coordinate_scale=table[:, 8],
@@ -264,14 +263,17 @@ def _stats(
     tolerances: FloatArray,
 ) -> list[SplineStats]:
     """Per-spline statistics by segmented reductions over the batch columns."""
-    starts = bounds[:-1]
     nonempty = counts > 0
-    at = np.where(nonempty, starts, 0)
+    # reduceat over the splines that have rows: their starts increase strictly, so each
+    # reduction covers exactly its spline's rows. (With an empty spline's start in between,
+    # reduceat would give the spline before it its first row alone.)
+    at = bounds[:-1][nonempty]
 
     def reduce(ufunc: np.ufunc, values: FloatArray, empty: float) -> FloatArray:
-        if values.size == 0:
-            return np.full(counts.shape, empty)
-        return np.where(nonempty, ufunc.reduceat(values, at), empty)
+        out = np.full(counts.shape, empty)
+        if at.size:
+            out[nonempty] = ufunc.reduceat(values, at)
+        return out
 
     arcs = reduce(np.add, columns.is_arc.astype(np.float64), 0.0).astype(np.intp)
     dev = columns.max_deviation

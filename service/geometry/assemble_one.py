@@ -43,7 +43,7 @@ def assemble_one(
     ox, oy = spiral.start
     c, sn = spiral.start_tangent
     s, mirror = spiral.a, float(spiral.turn_direction)
-    end_x, end_y = (float(v) for v in spiral.control_points[3])
+    end_x, end_y = spiral.end_point
     screen = placement_screen_ulps * _EPS
     table: list[tuple[float, ...]] = []
     for (

@@ -196,25 +196,35 @@ class Spiral:
         return Point(c * tx - s * ty, s * tx + c * ty)
 
     @cached_property
+    def _points(self) -> tuple[Point, Point, Point, Point]:
+        # B1 = B0 + a·T0, B2 = B1 + a·T0, B3 = B2 + b·T1, in floats: a batch builds
+        # thousands of spirals, and numpy would spend microseconds on each of these sums.
+        (x0, y0), (tx, ty), (ux, uy) = self.start, self.start_tangent, self.end_tangent
+        a, b = self.a, self.b
+        x1, y1 = x0 + a * tx, y0 + a * ty
+        x2, y2 = x1 + a * tx, y1 + a * ty
+        return self.start, Point(x1, y1), Point(x2, y2), Point(x2 + b * ux, y2 + b * uy)
+
+    @cached_property
     def control_points(self) -> FloatArray:
         """``B0..B3`` as a ``(4, 2)`` array."""
-        b0 = np.array(self.start)
-        t0 = np.array(self.start_tangent)
-        b1 = b0 + self.a * t0
-        b2 = b1 + self.a * t0
-        b3 = b2 + self.b * np.array(self.end_tangent)
-        return np.array([b0, b1, b2, b3])
+        return np.array(self._points, dtype=np.float64)
+
+    @property
+    def end_point(self) -> Point:
+        """``B3``, as stored (``control_points[3]``)."""
+        return self._points[3]
 
     @cached_property
     def chord(self) -> float:
         """``|B3 − B0|``: the spiral's size, the reference for relative tolerances."""
-        p = self.control_points
-        return float(np.hypot(*(p[3] - p[0])))
+        (x0, y0), (x3, y3) = self.start, self.end_point
+        return math.hypot(x3 - x0, y3 - y0)
 
     @cached_property
     def coordinate_scale(self) -> float:
         """The largest coordinate magnitude of the control points (for rounding margins)."""
-        return float(np.max(np.abs(self.control_points)))
+        return max(abs(v) for point in self._points for v in point)
 
     # -- evaluation (Bernstein form) ---------------------------------------------------
 

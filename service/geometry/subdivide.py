@@ -142,6 +142,20 @@ def _ordered(
     return Kept(spiral=spiral[order], biarcs=biarcs, deviation=deviation)
 
 
+def merge(parts: list[Kept]) -> Kept:
+    """Kept biarcs from several sources as one, by spiral (each part is in parameter order
+    within each of its spirals, and no two parts share a spiral)."""
+    if len(parts) == 1:
+        return parts[0]
+    spiral = np.concatenate([p.spiral for p in parts])
+    order = np.argsort(spiral, kind="stable")
+    return Kept(
+        spiral=spiral[order],
+        biarcs=_gather([p.biarcs for p in parts], order),
+        deviation=_gather([p.deviation for p in parts], order),
+    )
+
+
 def _take(columns: _T, index: npt.NDArray[np.bool_] | IntArray) -> _T:
     return type(columns)(*(column[index] for column in columns))
 

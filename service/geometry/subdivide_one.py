@@ -71,12 +71,12 @@ def subdivide_one(k: float, m: float, tolerance: float, max_biarcs: int) -> list
     return kept if not pending else None
 
 
-def kept(rows: list[Row]) -> Kept:
-    """The batch path's columns of these rows."""
+def kept(rows: list[Row], spiral: int = 0) -> Kept:
+    """The batch path's columns of these rows, as those of spiral ``spiral``."""
     columns = np.array(rows).T
     split = len(Biarcs._fields)
     return Kept(
-        spiral=np.zeros(len(rows), dtype=np.intp),
+        spiral=np.full(len(rows), spiral, dtype=np.intp),
         biarcs=Biarcs(*columns[:split]),
         deviation=Deviation(*columns[split:]),
     )

@@ -27,14 +27,22 @@ EPS = 2.0**-52
 PAPER = Spiral.from_parameters((1.5, 3.0), (1.0, 0.0), 51.34, 0.41574)
 
 
-def assert_same(a: ArcSpline | GeometryError, b: ArcSpline) -> None:
-    """Identical segments; statistics equal up to the last bit of a summation order."""
+def assert_same(a: ArcSpline | GeometryError, b: ArcSpline | GeometryError) -> None:
+    """The same refusal, or identical segments and statistics equal up to the last bit of a
+    summation order."""
+    if isinstance(b, GeometryError):
+        assert isinstance(a, GeometryError)
+        assert (a.field, a.kind, a.limit) == (b.field, b.kind, b.limit)
+        return
     assert isinstance(a, ArcSpline)
     assert a.segments == b.segments
     assert a.tolerance == b.tolerance
     for name in b.stats.__slots__:
         x, y = getattr(a.stats, name), getattr(b.stats, name)
-        assert x == pytest.approx(y, rel=1e-14, abs=0), name
+        if y is None:  # no arcs, no radii
+            assert x is None, name
+        else:
+            assert x == pytest.approx(y, rel=1e-14, abs=0), name
 
 
 # -- the segment cap ------------------------------------------------------------------------
@@ -184,6 +192,38 @@ def test_a_capped_request_in_a_batch_is_returned_in_place() -> None:
     assert results[1].kind == "segment_limit"
     assert results[1].limit == 20
     assert [len(r) for r in (results[0], results[2])] == [8, 12]
+    # The refused spiral has no rows: its neighbours' statistics are still their own.
+    assert_same(results[0], approximate(PAPER, 1e-2, limits=limits))
+    assert_same(results[2], approximate(PAPER, 1e-3, limits=limits))
+
+
+@pytest.mark.parametrize("copies", [1, 12], ids=["small: in floats", "large: with numpy"])
+def test_every_kind_of_spiral_in_a_batch_is_as_alone(copies: int) -> None:
+    # A small batch goes spiral by spiral in floats, a large one mostly with numpy; each
+    # mixes spirals that one path or the other must decide: flat arcs (lines), many pieces,
+    # the segment limit, a tolerance below the floor.
+    flat = Spiral.from_parameters((0.0, 0.0), (1.0, 1.0), 1e-9, 1e-4)
+    limits = Limits(max_segments=200)
+    cases = [
+        (PAPER, 1e-3),
+        (flat, 1e-6 * flat.chord),
+        (PAPER, 1e-7 * PAPER.chord),  # more pieces than the float path looks at
+        (PAPER, 1e-9),  # beyond the segment limit
+        (PAPER, min_tolerance(PAPER) / 2),
+        (PAPER, 1e-5),
+    ] * copies
+    results = approximate_many([s for s, _ in cases], [t for _, t in cases], limits=limits)
+    for (spiral, tolerance), got in zip(cases, results, strict=True):
+        try:
+            alone: ArcSpline | GeometryError = approximate(spiral, tolerance, limits=limits)
+        except GeometryError as error:
+            alone = error
+        assert_same(got, alone)
+    kinds = [r.kind if isinstance(r, GeometryError) else len(r) for r in results[:6]]
+    assert kinds[0] == 12 and kinds[5] == 54
+    assert kinds[3:5] == ["segment_limit", "tolerance_floor"]
+    line_count = results[1].stats.line_count  # type: ignore[union-attr]
+    assert line_count > 0
 
 
 def test_batch_edge_cases() -> None:
