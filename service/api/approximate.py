@@ -6,7 +6,7 @@ import itertools
 from typing import Any
 
 import orjson
-from fastapi import APIRouter
+from fastapi import APIRouter, Request
 from pydantic import TypeAdapter, ValidationError
 
 from service.jobs import Encoded, Job, JobResult, approximate_chunk
@@ -21,11 +21,12 @@ from .errors import (
     problem_responses,
     validation_problem,
 )
-from .runtime import Runtime, RuntimeDep
+from .routing import LeanRoute
+from .runtime import Runtime, runtime_of
 from .schemas import ApproximateRequest, ApproximateResponse, BatchRequest, BatchResponse
 from .translate import job_problem, to_job
 
-router = APIRouter(tags=["approximation"])
+router = APIRouter(tags=["approximation"], route_class=LeanRoute)
 
 _JOB_ADAPTER: TypeAdapter[ApproximateRequest] = TypeAdapter(ApproximateRequest)
 
@@ -37,8 +38,9 @@ _JOB_ADAPTER: TypeAdapter[ApproximateRequest] = TypeAdapter(ApproximateRequest)
     response_model=ApproximateResponse,
     responses=problem_responses(400, 413, 422, 503, 504),
 )
-async def approximate(body: ApproximateRequest, runtime: RuntimeDep) -> RawJSONResponse:
+async def approximate(body: ApproximateRequest, request: Request) -> RawJSONResponse:
     """The arc spline of one spiral within the tolerance, its statistics, and G-code if asked."""
+    runtime = runtime_of(request)
     # Jobs that arrive while every worker is busy share a worker task (see Coalescer).
     result = await runtime.singles().run(to_job(body, ["body"]))
     if isinstance(result, Encoded):
@@ -55,12 +57,13 @@ async def approximate(body: ApproximateRequest, runtime: RuntimeDep) -> RawJSONR
     response_model=BatchResponse,
     responses=problem_responses(400, 413, 422, 503),
 )
-async def approximate_batch(body: BatchRequest, runtime: RuntimeDep) -> RawJSONResponse:
+async def approximate_batch(body: BatchRequest, request: Request) -> RawJSONResponse:
     """One result per job, in order: ``ok`` with the body of /v1/approximate, or ``error``.
 
     Each job is validated and computed on its own, so a bad job becomes an error entry and
     spoils nothing else. The jobs go to the workers in a few large tasks.
     """
+    runtime = runtime_of(request)
     settings = runtime.settings
     if len(body.jobs) > settings.batch_max_jobs:
         detail = (
@@ -73,8 +76,8 @@ async def approximate_batch(body: BatchRequest, runtime: RuntimeDep) -> RawJSONR
     for i, raw in enumerate(body.jobs):
         prefix: list[str | int] = ["body", "jobs", i]
         try:
-            request = _JOB_ADAPTER.validate_python(raw)
-            pending.append((i, to_job(request, prefix)))
+            job = _JOB_ADAPTER.validate_python(raw)
+            pending.append((i, to_job(job, prefix)))
             entries.append(None)  # until the worker answers
         except ValidationError as error:
             entries.append(validation_problem(error.errors(), prefix))

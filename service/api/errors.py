@@ -219,25 +219,10 @@ def pool_problem(error: PoolError) -> tuple[dict[str, Any], dict[str, str]]:
 
 
 async def _on_validation_error(request: Request, exc: Exception) -> Response:
+    # Bodies are parsed by routing.LeanRoute: JSON it cannot parse is a malformed_json
+    # problem already; what is left here are the fields that fail validation.
     assert isinstance(exc, RequestValidationError)
-    errors = exc.errors()
-    malformed = [e for e in errors if e.get("type") == "json_invalid"]
-    if malformed:
-        error = malformed[0]
-        reason = (error.get("ctx") or {}).get("error", "not valid JSON")
-        position = error["loc"][-1]
-        body = problem("malformed_json", f"the body is not valid JSON: {reason} at {position}")
-        return problem_response(body, request)
-    return problem_response(validation_problem(errors, []), request)
-
-
-def _parse_failure(exc: HTTPException) -> str:
-    cause = exc.__cause__
-    if isinstance(cause, RecursionError):
-        return "nested too deeply"
-    if isinstance(cause, UnicodeDecodeError):
-        return "not UTF-8 text"
-    return str(cause) or type(cause).__name__
+    return problem_response(validation_problem(exc.errors(), []), request)
 
 
 async def _on_http_error(request: Request, exc: Exception) -> Response:
@@ -246,11 +231,6 @@ async def _on_http_error(request: Request, exc: Exception) -> Response:
     if status == 413:
         body = problem("body_too_large", str(exc.detail))
         body["limit"] = request.app.state.runtime.settings.max_body_bytes
-    elif status == 400 and exc.__cause__ is not None:
-        # FastAPI answers a body its JSON parser cannot take for reasons other than syntax
-        # (invalid UTF-8, nesting deeper than the recursion limit, an integer of thousands
-        # of digits) with this bare 400; it is malformed JSON all the same.
-        body = problem("malformed_json", f"the body is not valid JSON: {_parse_failure(exc)}")
     else:
         detail = exc.detail if isinstance(exc.detail, str) else http.HTTPStatus(status).phrase
         body = problem("http", detail, status=status)

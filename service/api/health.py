@@ -2,13 +2,14 @@
 
 from __future__ import annotations
 
-from fastapi import APIRouter
+from fastapi import APIRouter, Request
 
 from .errors import PROBLEM_MEDIA_TYPE, ProblemError, RawJSONResponse, problem
-from .runtime import RuntimeDep
+from .routing import LeanRoute
+from .runtime import runtime_of
 from .schemas import HealthResponse, ReadyResponse
 
-router = APIRouter(tags=["operations"])
+router = APIRouter(tags=["operations"], route_class=LeanRoute)
 
 _HEALTHY = HealthResponse(status="ok").model_dump_json().encode()
 
@@ -33,17 +34,15 @@ async def healthz() -> RawJSONResponse:
         }
     },
 )
-async def readyz(runtime: RuntimeDep) -> ReadyResponse:
+async def readyz(request: Request) -> RawJSONResponse:
     """Ready when the worker pool is up and accepting work; 503 otherwise."""
-    pool = runtime.pool
+    pool = runtime_of(request).pool
     if pool is None or not pool.ready:
         state: str = "stopped" if pool is None else pool.state
         if state == "ready":  # ready by state, but a worker has died: about to restart
             state = "restarting its workers"
         raise ProblemError(problem("not_ready", f"the worker pool is {state}"))
-    return ReadyResponse(
-        status="ready",
-        workers=pool.size,
-        in_flight=pool.in_flight,
-        queue_capacity=pool.capacity,
+    ready = ReadyResponse(
+        status="ready", workers=pool.size, in_flight=pool.in_flight, queue_capacity=pool.capacity
     )
+    return RawJSONResponse(ready.model_dump_json().encode())

@@ -20,6 +20,7 @@ from starlette.types import ASGIApp, Message, Receive, Scope, Send
 from service.worker import WorkerPool
 
 from .errors import ALL_KINDS
+from .routing import LeanRoute
 
 # The *_created series (a timestamp per label set) double the text for no use here.
 disable_created_metrics()  # type: ignore[no-untyped-call]
@@ -139,7 +140,7 @@ class MetricsMiddleware:
             self.metrics.latency.labels(path, method).observe(time.perf_counter() - started)
 
 
-router = APIRouter(tags=["operations"])
+router = APIRouter(tags=["operations"], route_class=LeanRoute)
 
 
 @router.get(

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import anyio
 import numpy as np
 import numpy.typing as npt
-from fastapi import APIRouter
+from fastapi import APIRouter, Request
 from starlette.responses import Response
 
 from service.geometry import ArcSpline, GeometryError, Spiral
@@ -24,11 +24,12 @@ from service.geometry.types import FloatArray
 from service.jobs import preview_spline
 
 from .errors import ProblemError, problem_responses
-from .runtime import RuntimeDep
+from .routing import LeanRoute
+from .runtime import runtime_of
 from .schemas import ApproximateRequest
 from .translate import job_problem, to_job
 
-router = APIRouter(tags=["approximation"])
+router = APIRouter(tags=["approximation"], route_class=LeanRoute)
 
 SVG_MEDIA_TYPE = "image/svg+xml"
 WIDTH_PX = 900
@@ -55,8 +56,9 @@ class SVGResponse(Response):
         **problem_responses(400, 413, 422, 503, 504),
     },
 )
-async def preview(body: ApproximateRequest, runtime: RuntimeDep) -> SVGResponse:
+async def preview(body: ApproximateRequest, request: Request) -> SVGResponse:
     """The spiral, its arcs with their centres, the deviation magnified (``gcode`` ignored)."""
+    runtime = runtime_of(request)
     job = to_job(body, ["body"], gcode=False)
     settings = runtime.settings
     result = await runtime.running_pool().run(

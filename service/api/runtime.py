@@ -3,9 +3,8 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Annotated
 
-from fastapi import Depends, Request
+from fastapi import Request
 
 from service.geometry import Limits
 from service.jobs import Job, JobResult
@@ -39,10 +38,7 @@ class Runtime:
         return self.coalescer
 
 
-async def get_runtime(request: Request) -> Runtime:
-    # async: FastAPI would run a plain function in a worker thread, a costly hop per request.
+def runtime_of(request: Request) -> Runtime:
+    """The runtime of the app serving ``request``."""
     runtime: Runtime = request.app.state.runtime
     return runtime
-
-
-RuntimeDep = Annotated[Runtime, Depends(get_runtime)]

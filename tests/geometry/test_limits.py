@@ -220,7 +220,7 @@ def test_every_kind_of_spiral_in_a_batch_is_as_alone(copies: int) -> None:
             alone = error
         assert_same(got, alone)
     kinds = [r.kind if isinstance(r, GeometryError) else len(r) for r in results[:6]]
-    assert kinds[0] == 12 and kinds[5] == 54
+    assert (kinds[0], kinds[5]) == (12, 54)
     assert kinds[3:5] == ["segment_limit", "tolerance_floor"]
     line_count = results[1].stats.line_count  # type: ignore[union-attr]
     assert line_count > 0
