@@ -38,7 +38,7 @@ import signal
 import socket
 import struct
 from collections import deque
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from multiprocessing.connection import Connection
 from multiprocessing.process import BaseProcess
@@ -213,9 +213,9 @@ class WorkerPool:
 
     # -- running tasks -----------------------------------------------------------------
 
-    @contextlib.contextmanager
-    def admit(self, units: int = 1) -> Iterator[None]:
-        """Reserve room for ``units`` (requests or tasks), or refuse at once."""
+    def admit(self, units: int = 1) -> _Admission:
+        """Reserve room for ``units`` (requests or tasks), or refuse at once; a context
+        manager that gives the room back."""
         if self.state in ("stopped", "starting"):
             raise PoolUnavailableError("the worker pool is not running")
         if self.in_flight + units > self.capacity:
@@ -224,12 +224,12 @@ class WorkerPool:
             raise error
         self.in_flight += units
         self._idle.clear()
-        try:
-            yield
-        finally:
-            self.in_flight -= units
-            if self.in_flight == 0:
-                self._idle.set()
+        return _Admission(self, units)
+
+    def _leave(self, units: int) -> None:
+        self.in_flight -= units
+        if self.in_flight == 0:
+            self._idle.set()
 
     async def run(self, fn: Callable[..., T], *args: Any, time_limit_s: float) -> T:
         """Run ``fn(*args)`` in a worker, with ``time_limit_s`` of running time."""
@@ -449,6 +449,22 @@ class WorkerPool:
         task = asyncio.create_task(coroutine)
         self._background.add(task)  # the loop keeps only weak references to tasks
         task.add_done_callback(self._background.discard)
+
+
+class _Admission:
+    """Room reserved by :meth:`WorkerPool.admit` (a class, not a generator: it is on the path
+    of every request)."""
+
+    __slots__ = ("pool", "units")
+
+    def __init__(self, pool: WorkerPool, units: int) -> None:
+        self.pool, self.units = pool, units
+
+    def __enter__(self) -> None:
+        return None
+
+    def __exit__(self, *_: object) -> None:
+        self.pool._leave(self.units)
 
 
 async def _reap(worker: _Worker) -> None:

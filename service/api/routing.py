@@ -23,6 +23,7 @@ from fastapi import Request
 from fastapi.exceptions import RequestValidationError
 from fastapi.routing import APIRoute
 from pydantic import BaseModel, TypeAdapter, ValidationError
+from starlette.requests import ClientDisconnect
 from starlette.responses import Response
 
 from .errors import ProblemError, problem
@@ -70,6 +71,19 @@ def _parameters(endpoint: Endpoint) -> tuple[str | None, tuple[str, TypeAdapter[
     return request_name, body
 
 
+async def _body(request: Request) -> bytes:
+    """The request's body: ``Request.body()`` without its stream machinery (nothing else
+    reads these bodies)."""
+    chunks: list[bytes] = []
+    while True:
+        message = await request.receive()
+        if message["type"] != "http.request":  # the client went away
+            raise ClientDisconnect()
+        chunks.append(message.get("body", b""))
+        if not message.get("more_body", False):
+            return chunks[0] if len(chunks) == 1 else b"".join(chunks)
+
+
 def _is_json(content_type: str | None) -> bool:
     if not content_type:
         return False
@@ -81,7 +95,7 @@ def _is_json(content_type: str | None) -> bool:
 async def json_body(request: Request, adapter: TypeAdapter[Any]) -> Any:
     """The request's JSON body validated by ``adapter``, as FastAPI would take it: an empty
     body is a missing one, a body not declared as JSON is not an object."""
-    raw = await request.body()
+    raw = await _body(request)
     if not raw:
         missing = {"type": "missing", "loc": ("body",), "msg": "Field required", "input": None}
         raise RequestValidationError([missing])

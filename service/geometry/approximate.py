@@ -221,11 +221,12 @@ def _subdivide_batch(
 
 def _floats_cheaper(pieces: int, remaining: int) -> bool:
     """Whether ``remaining`` more spirals like one of ``pieces`` pieces are cheaper in floats
-    than with numpy: a cost model, in the time of one piece in floats (measured here: a
-    spiral costs about 9 more in floats; numpy's subdivision and assembly about 150 plus 1.5
-    per piece of one spiral, whatever the batch's size). Either way the numbers are the same.
+    than with numpy: a cost model, in the time of one piece in floats (about 7 µs), fitted
+    on this machine (bench/model data in the commit): a spiral in floats costs its pieces
+    and 3.5 more; numpy's subdivision and assembly cost 38 per level (log2 of the pieces)
+    and 0.07 per piece of each spiral. Either way the numbers are the same.
     """
-    return remaining * (pieces + 9) <= 150 + 1.5 * pieces
+    return remaining * (pieces + 3.5 - 0.07 * pieces) <= 38.0 * math.log2(pieces + 1)
 
 
 class _Batch(NamedTuple):
