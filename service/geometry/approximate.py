@@ -186,7 +186,7 @@ def _subdivide_batch(
             if floats
             else None
         )
-        if rows is None:
+        if rows is None:  # numpy is cheaper from here, or must decide this spiral
             rest.append(j)
             continue
         floats = _floats_cheaper(2 * len(rows) - 1, n - 1 - j)
@@ -222,9 +222,10 @@ def _subdivide_batch(
 def _floats_cheaper(pieces: int, remaining: int) -> bool:
     """Whether ``remaining`` more spirals like one of ``pieces`` pieces are cheaper in floats
     than with numpy: a cost model, in the time of one piece in floats (about 7 µs), fitted
-    on this machine (bench/model data in the commit): a spiral in floats costs its pieces
-    and 3.5 more; numpy's subdivision and assembly cost 38 per level (log2 of the pieces)
-    and 0.07 per piece of each spiral. Either way the numbers are the same.
+    on the build machine (the paper's spiral at 7 to 53 pieces, alone in floats and in numpy
+    batches of 2, 8 and 32): a spiral in floats costs its pieces and 3.5 more; numpy's
+    subdivision and assembly cost 38 per level (log2 of the pieces) and 0.07 per piece of
+    each spiral. Either way the numbers are the same.
     """
     return remaining * (pieces + 3.5 - 0.07 * pieces) <= 38.0 * math.log2(pieces + 1)
 
