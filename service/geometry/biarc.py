@@ -14,8 +14,8 @@ Arc 0 turns through ``α`` from ``A0`` to ``G``, arc 1 through ``β`` from ``G``
 both are tangent to the chord direction, so the pair is G1.
 
 Only ``+ − × ÷`` and square roots are used — each correctly rounded, in numpy as in Python —
-so :func:`biarc_terms` gives bit-identical results on floats (the one-spiral path,
-``service.geometry.subdivide_one``) and on arrays (the batch path). The directions are the
+so the one-spiral path (``service.geometry.subdivide_one``), which writes the same operations
+out in floats, gives bit-identical results. The directions are the
 unit vectors of ``(1 + k·w, m·w)`` (``service.geometry.canonical``); the half angles come from
 the exact cross products ``m·(w₂ − w₁)`` and the half-angle formulas, and point differences
 are factored, so a short or nearly straight piece keeps full relative precision — ``V``
@@ -24,95 +24,21 @@ would be ill-conditioned there.
 
 from __future__ import annotations
 
-from collections.abc import Callable
-from typing import Generic, NamedTuple, TypeVar
+from typing import NamedTuple
 
 import numpy as np
 
 from .types import FloatArray
 
-F = TypeVar("F", float, FloatArray)
 
-
-class BiarcTerms(NamedTuple, Generic[F]):
-    """What :func:`biarc_terms` computes for a piece ``[u0, u1]`` (floats or arrays).
+class Biarcs(NamedTuple):
+    """Incentre biarcs of pieces ``[u0, u1]``, one per array element, canonical frame.
 
     ``e0``, ``ec``, ``e1`` are the unit directions at ``A0``, along the chord (= at ``G``) and
     at ``A1``; ``cos_half_a``/``sin_half_a`` are those of ``α/2`` (likewise ``β``); ``join`` is
-    ``G − A0``, at distance ``join_distance``.
+    ``G − A0``, at distance ``join_distance``. A named tuple: built per level and per spiral,
+    it costs a fraction of a frozen dataclass.
     """
-
-    e0x: F
-    e0y: F
-    ecx: F
-    ecy: F
-    e1x: F
-    e1y: F
-    cos_half_a: F
-    sin_half_a: F
-    cos_half_b: F
-    sin_half_b: F
-    chord_length: F
-    join_distance: F
-    join_dx: F
-    join_dy: F
-    radius0: F
-    radius1: F
-
-
-def biarc_terms(k: F, m: F, u0: F, u1: F, sqrt: Callable[[F], F]) -> BiarcTerms[F]:
-    """The incentre biarc of ``[u0, u1]`` (``u0 < u1``) of the canonical spiral ``(k, m)``.
-
-    ``sqrt`` is ``math.sqrt`` for floats and ``np.sqrt`` for arrays. The chord is parallel to
-    the direction at ``w = σ/3`` (``σ = u0² + u0·u1 + u1²``) and ``A1 − A0 = 3h·(1 + k·σ/3,
-    m·σ/3)``, so ``L = 3h·‖(1 + k·σ/3, m·σ/3)‖``. ``cos(α/2) = √((1 + cos α)/2)`` has no
-    cancellation (``α < 90°``), and ``sin(α/2) = sin α / (2·cos(α/2))`` keeps the cross
-    product's relative precision.
-    """
-    h = u1 - u0
-    w0, w1 = u0 * u0, u1 * u1
-    w_chord = (w1 + u1 * u0 + w0) / 3.0
-    x0, y0 = 1.0 + k * w0, m * w0
-    xc, yc = 1.0 + k * w_chord, m * w_chord
-    x1, y1 = 1.0 + k * w1, m * w1
-    n0, nc, n1 = sqrt(x0 * x0 + y0 * y0), sqrt(xc * xc + yc * yc), sqrt(x1 * x1 + y1 * y1)
-    n0c, nc1 = n0 * nc, nc * n1
-    cos_half_a = sqrt(0.5 + 0.5 * ((x0 * xc + y0 * yc) / n0c))
-    cos_half_b = sqrt(0.5 + 0.5 * ((xc * x1 + yc * y1) / nc1))
-    # sin α = m·(w_chord − w0) / (n0·nc), w_chord − w0 = h·(u1 + 2·u0)/3 (and so for β).
-    sin_half_a = m * (h * (u1 + 2.0 * u0) / 3.0) / (n0c * (2.0 * cos_half_a))
-    sin_half_b = m * (h * (2.0 * u1 + u0) / 3.0) / (nc1 * (2.0 * cos_half_b))
-    chord_length = 3.0 * h * nc
-    chord_over_s = chord_length / (sin_half_a * cos_half_b + cos_half_a * sin_half_b)
-    join_distance = chord_over_s * sin_half_b
-    e0x, e0y = x0 / n0, y0 / n0
-    ecx, ecy = xc / nc, yc / nc
-    # The bisector of α is (e0 + ec) / (2·cos(α/2)).
-    along = join_distance / (2.0 * cos_half_a)
-    return BiarcTerms(
-        e0x=e0x,
-        e0y=e0y,
-        ecx=ecx,
-        ecy=ecy,
-        e1x=x1 / n1,
-        e1y=y1 / n1,
-        cos_half_a=cos_half_a,
-        sin_half_a=sin_half_a,
-        cos_half_b=cos_half_b,
-        sin_half_b=sin_half_b,
-        chord_length=chord_length,
-        join_distance=join_distance,
-        join_dx=along * (e0x + ecx),
-        join_dy=along * (e0y + ecy),
-        radius0=join_distance / (2.0 * sin_half_a),
-        radius1=chord_over_s * sin_half_a / (2.0 * sin_half_b),
-    )
-
-
-class Biarcs(NamedTuple):
-    """Incentre biarcs of pieces ``[u0, u1]``, one per array element, canonical frame (the
-    fields of :class:`BiarcTerms` as arrays, with the pieces' ends). A named tuple: built per
-    level and per spiral, it costs a fraction of a frozen dataclass."""
 
     u0: FloatArray
     u1: FloatArray
@@ -142,5 +68,51 @@ class Biarcs(NamedTuple):
 
 
 def incentre_biarcs(k: FloatArray, m: FloatArray, u0: FloatArray, u1: FloatArray) -> Biarcs:
-    """The incentre biarc of each piece ``[u0, u1]`` of spirals ``(k, m)`` (arrays)."""
-    return Biarcs(u0, u1, *biarc_terms(k, m, u0, u1, np.sqrt))
+    """The incentre biarc of each piece ``[u0, u1]`` (``u0 < u1``) of spirals ``(k, m)``.
+
+    The chord is parallel to the direction at ``w = σ/3`` (``σ = u0² + u0·u1 + u1²``) and
+    ``A1 − A0 = 3h·(1 + k·σ/3, m·σ/3)``, so ``L = 3h·‖(1 + k·σ/3, m·σ/3)‖``.
+    ``cos(α/2) = √((1 + cos α)/2)`` has no cancellation (``α < 90°``), and
+    ``sin(α/2) = sin α / (2·cos(α/2))`` keeps the cross product's relative precision.
+    """
+    sqrt = np.sqrt
+    h = u1 - u0
+    w0, w1 = u0 * u0, u1 * u1
+    w_chord = (w1 + u1 * u0 + w0) / 3.0
+    x0, y0 = 1.0 + k * w0, m * w0
+    xc, yc = 1.0 + k * w_chord, m * w_chord
+    x1, y1 = 1.0 + k * w1, m * w1
+    n0, nc, n1 = sqrt(x0 * x0 + y0 * y0), sqrt(xc * xc + yc * yc), sqrt(x1 * x1 + y1 * y1)
+    n0c, nc1 = n0 * nc, nc * n1
+    cos_half_a = sqrt(0.5 + 0.5 * ((x0 * xc + y0 * yc) / n0c))
+    cos_half_b = sqrt(0.5 + 0.5 * ((xc * x1 + yc * y1) / nc1))
+    # sin α = m·(w_chord − w0) / (n0·nc), w_chord − w0 = h·(u1 + 2·u0)/3 (and so for β).
+    sin_half_a = m * (h * (u1 + 2.0 * u0) / 3.0) / (n0c * (2.0 * cos_half_a))
+    sin_half_b = m * (h * (2.0 * u1 + u0) / 3.0) / (nc1 * (2.0 * cos_half_b))
+    chord_length = 3.0 * h * nc
+    chord_over_s = chord_length / (sin_half_a * cos_half_b + cos_half_a * sin_half_b)
+    join_distance = chord_over_s * sin_half_b
+    e0x, e0y = x0 / n0, y0 / n0
+    ecx, ecy = xc / nc, yc / nc
+    # The bisector of α is (e0 + ec) / (2·cos(α/2)).
+    along = join_distance / (2.0 * cos_half_a)
+    return Biarcs(
+        u0=u0,
+        u1=u1,
+        e0x=e0x,
+        e0y=e0y,
+        ecx=ecx,
+        ecy=ecy,
+        e1x=x1 / n1,
+        e1y=y1 / n1,
+        cos_half_a=cos_half_a,
+        sin_half_a=sin_half_a,
+        cos_half_b=cos_half_b,
+        sin_half_b=sin_half_b,
+        chord_length=chord_length,
+        join_distance=join_distance,
+        join_dx=along * (e0x + ecx),
+        join_dy=along * (e0y + ecy),
+        radius0=join_distance / (2.0 * sin_half_a),
+        radius1=chord_over_s * sin_half_a / (2.0 * sin_half_b),
+    )

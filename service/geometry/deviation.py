@@ -1,16 +1,14 @@
 """Where the spiral passes between a biarc's arcs (Theorem 1) and its largest deviation
 from them (Theorem 2), paper §3–§4, in the canonical frame of ``service.geometry.canonical``.
 
-The arithmetic is written once, in functions that take floats or arrays alike (``+ − × ÷``
-and a square root passed in), so the one-spiral path (``service.geometry.subdivide_one``) and
-the batch path here give bit-identical numbers; only the choices between values (``np.where``
-here, ``if`` there) are written for each.
+Only ``+ − × ÷`` and square roots are used, each correctly rounded in numpy as in Python: the
+one-spiral path (``service.geometry.subdivide_one``) writes the same operations out in floats
+and gives bit-identical numbers.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable
-from typing import Generic, NamedTuple, TypeVar
+from typing import NamedTuple
 
 import numpy as np
 import numpy.typing as npt
@@ -18,8 +16,6 @@ import numpy.typing as npt
 from .biarc import Biarcs
 from .roots import polynomial_root
 from .types import FloatArray
-
-F = TypeVar("F", float, FloatArray)
 
 #: Newton steps before the first convergence test, for Theorem 1's cubic and Theorem 2's
 #: quartics: from the start points used here nearly every root is within the resolution after
@@ -45,19 +41,27 @@ class Deviation(NamedTuple):
     u: FloatArray
 
 
-class Cubic(NamedTuple, Generic[F]):
+class Cubic(NamedTuple):
     """``c3·v³ + c2·v² + c1·v + c0`` and a start for Newton."""
 
-    c3: F
-    c2: F
-    c1: F
-    c0: F
-    start: F
+    c3: FloatArray
+    c2: FloatArray
+    c1: FloatArray
+    c0: FloatArray
+    start: FloatArray
 
 
 def split_cubic(
-    k: F, m: F, u0: F, h: F, ecx: F, ecy: F, cos_half_a: F, join_distance: F, chord_length: F
-) -> Cubic[F]:
+    k: FloatArray,
+    m: FloatArray,
+    u0: FloatArray,
+    h: FloatArray,
+    ecx: FloatArray,
+    ecy: FloatArray,
+    cos_half_a: FloatArray,
+    join_distance: FloatArray,
+    chord_length: FloatArray,
+) -> Cubic:
     """Theorem 1: ``t = u0 + v`` for the unique root ``v ∈ (0, h)`` of this cubic.
 
     ``(Q(t) − G)·H = 0`` with the chord direction ``H = ec`` and ``K = (k, m)·H`` is
@@ -76,20 +80,28 @@ def split_cubic(
     )
 
 
-class Quartic(NamedTuple, Generic[F]):
+class Quartic(NamedTuple):
     """Theorem 2's ``q_i(u) = a4·u⁴ + c3·u³ + c2·u² + c1·u + c0`` for arc ``i``, and the arc's
     radius vector ``r·N = (−rs, rc)`` from its tangent point."""
 
-    a4: F
-    c3: F
-    c2: F
-    c1: F
-    c0: F
-    rs: F
-    rc: F
+    a4: FloatArray
+    c3: FloatArray
+    c2: FloatArray
+    c1: FloatArray
+    c0: FloatArray
+    rs: FloatArray
+    rc: FloatArray
 
 
-def side_quartic(k: F, m: F, a4: F, ui: F, radius: F, ex: F, ey: F) -> Quartic[F]:
+def side_quartic(
+    k: FloatArray,
+    m: FloatArray,
+    a4: FloatArray,
+    ui: FloatArray,
+    radius: FloatArray,
+    ex: FloatArray,
+    ey: FloatArray,
+) -> Quartic:
     """Theorem 2: the quartic whose root in the side is the deviation's interior maximum.
 
     ``q_i(u) = α1 + α2(u + u_i) + α3(u² + u·u_i + u_i²) + α4(u⁴ + u³u_i + u²u_i² + u·u_i³ +
@@ -106,21 +118,23 @@ def side_quartic(k: F, m: F, a4: F, ui: F, radius: F, ex: F, ey: F) -> Quartic[F
     return Quartic(a4=a4, c3=a4 * ui, c2=c2, c1=c1, c0=3.0 + ui * c1, rs=rs, rc=rc)
 
 
-def quartic_value(q: Quartic[F], u: F) -> F:
+def quartic_value(q: Quartic, u: FloatArray) -> FloatArray:
     return (((q.a4 * u + q.c3) * u + q.c2) * u + q.c1) * u + q.c0
 
 
-def secant(lo: F, hi: F, q_lo: F, q_hi: F) -> F:
+def secant(lo: FloatArray, hi: FloatArray, q_lo: FloatArray, q_hi: FloatArray) -> FloatArray:
     """Where the chord of ``q`` over ``[lo, hi]`` crosses zero."""
     return lo + (hi - lo) * q_lo / (q_lo - q_hi)
 
 
-def towards(x: F, q_x: F, end: F, q_end: F) -> F:
+def towards(x: FloatArray, q_x: FloatArray, end: FloatArray, q_end: FloatArray) -> FloatArray:
     """The secant from ``x`` to the end of the sub-bracket where ``q`` has the other sign."""
     return x + (end - x) * q_x / (q_x - q_end)
 
 
-def radial_gap(k: F, m: F, ui: F, u: F, q: Quartic[F], radius: F, sqrt: Callable[[F], F]) -> F:
+def radial_gap(
+    k: FloatArray, m: FloatArray, ui: FloatArray, u: FloatArray, q: Quartic, radius: FloatArray
+) -> FloatArray:
     """``|‖Q(u) − C‖ − r|`` for the circle tangent at ``Q(u_i)``.
 
     With ``P = Q(u) − Q(u_i)`` (factored: ``(u − u_i)·(3 + k·σ, m·σ)``) and ``C = Q(u_i) +
@@ -132,15 +146,22 @@ def radial_gap(k: F, m: F, ui: F, u: F, q: Quartic[F], radius: F, sqrt: Callable
     px, py = h * (3.0 + k * sigma), h * m * sigma
     numerator = px * px + py * py + 2.0 * (px * q.rs - py * q.rc)
     dx, dy = px + q.rs, py - q.rc
-    return abs(numerator) / (sqrt(dx * dx + dy * dy) + radius)
+    return abs(numerator) / (np.sqrt(dx * dx + dy * dy) + radius)
 
 
-def join_gap(k: F, m: F, u0: F, t: F, join_dx: F, join_dy: F, sqrt: Callable[[F], F]) -> F:
+def join_gap(
+    k: FloatArray,
+    m: FloatArray,
+    u0: FloatArray,
+    t: FloatArray,
+    join_dx: FloatArray,
+    join_dy: FloatArray,
+) -> FloatArray:
     """``‖Q(t) − G‖``, the deviation at Theorem 1's ``t``, from ``Q(t) − A0`` factored."""
     h = t - u0
     sigma = t * t + t * u0 + u0 * u0
     dx, dy = h * (3.0 + k * sigma) - join_dx, h * m * sigma - join_dy
-    return sqrt(dx * dx + dy * dy)
+    return np.sqrt(dx * dx + dy * dy)
 
 
 def split_parameter(k: FloatArray, m: FloatArray, b: Biarcs) -> FloatArray:
@@ -189,11 +210,11 @@ def max_deviation(k: FloatArray, m: FloatArray, b: Biarcs, t: FloatArray) -> Dev
             root = found
         else:
             root[which] = found
-    side = radial_gap(kk, mm, ui, root, q, r, np.sqrt)
+    side = radial_gap(kk, mm, ui, root, q, r)
     if not every:
         side = np.where(bracketed, side, 0.0)
 
-    at_t = join_gap(k, m, b.u0, t, b.join_dx, b.join_dy, np.sqrt)
+    at_t = join_gap(k, m, b.u0, t, b.join_dx, b.join_dy)
     arc0, arc1 = side[:n], side[n:]
     u_arc0 = np.where(arc0 > at_t, root[:n], t)
     u_arc1 = np.where(arc1 > at_t, root[n:], t)

@@ -3,7 +3,7 @@
 A single spiral's recursion has a few dozen pieces spread over several levels; numpy's cost
 per call (about half a microsecond, whatever the array's size) then outweighs the arithmetic,
 so one spiral is faster in plain floats, depth first. The arithmetic is the batch path's own
-(``biarc_terms``, ``split_cubic``, ``side_quartic``, ``radial_gap``, ``join_gap`` and the
+(``incentre_biarcs``, ``split_cubic``, ``side_quartic``, ``radial_gap``, ``join_gap`` and the
 Newton iteration of ``roots.polynomial_root``), written out inline — function calls cost
 more than arithmetic here — with the same operations in the same order, each correctly
 rounded in numpy as in Python; so the kept biarcs are bit-identical to those of
@@ -97,13 +97,13 @@ def _end(k: float, m: float, u: float) -> End:
 
 
 def _piece(k: float, m: float, alpha4: float, end0: End, end1: End) -> Row:
-    """One piece: ``biarc_terms``, ``split_parameter`` and ``max_deviation`` for one element,
+    """One piece: ``incentre_biarcs``, ``split_parameter`` and ``max_deviation`` for one element,
     written out operation for operation (the function calls of the shared form cost more
     than the arithmetic here; tests/geometry/test_subdivide_one.py holds the two equal)."""
     sqrt = math.sqrt
     u0, w0, x0, y0, n0, e0x, e0y, q0x, q0y = end0
     u1, w1, x1, y1, n1, e1x, e1y, q1x, q1y = end1
-    # biarc_terms
+    # incentre_biarcs
     h = u1 - u0
     w_chord = (w1 + u1 * u0 + w0) / 3.0
     xc, yc = 1.0 + k * w_chord, m * w_chord

@@ -170,8 +170,7 @@ class ArcSpline:
 
     Immutable: its attributes are read-only properties. The splines of a batch share the
     batch's columns: ``columns`` are views of this spline's rows, made on first use, so a
-    batch of thousands makes no per-spline arrays that nobody reads; :meth:`batch_rows` gives
-    the shared columns and the rows, for consumers that work on whole batches.
+    batch of thousands makes no per-spline arrays that nobody reads.
     """
 
     __slots__ = ("_batch", "_begin", "_columns", "_end", "_stats", "_strategy", "_tolerance")
@@ -213,10 +212,6 @@ class ArcSpline:
     @property
     def strategy(self) -> str:
         return self._strategy
-
-    def batch_rows(self) -> tuple[SegmentColumns, int, int]:
-        """The columns this spline's rows are part of, and its rows ``begin:end`` in them."""
-        return self._batch, self._begin, self._end
 
     @property
     def segments(self) -> tuple[Segment, ...]:
