@@ -52,12 +52,17 @@ import numpy.typing as npt
 from . import canonical
 from .assemble import FLAT_SWEEP_RAD, Frames, splines
 from .errors import GeometryError
-from .fewest_exact import arc_deviation, joint_split, screen_radial, split_guess
+from .fewest_exact import (
+    FLOAT_ELEMENTS,
+    arc_deviation,
+    joint_split,
+    one_arc_deviation,
+    screen_radial,
+    split_guess,
+)
 from .fewest_tail import Triarc, best_triarcs
 from .spiral import Spiral
 from .types import ArcSpline, BoolArray, FloatArray, SegmentColumns
-
-Float = float | FloatArray
 
 #: Screening samples per arc (a lower bound on its deviation; the proof comes after).
 SAMPLES = 8
@@ -97,6 +102,12 @@ _COARSE_T = (np.arange(COARSE_SAMPLES) + 0.5) / COARSE_SAMPLES
 _LAMBDA_GRID = (np.arange(LAMBDAS) + 0.5) / LAMBDAS
 _SCAN_LAMBDA_GRID = 0.5 + SCAN_WIDTH * np.linspace(-1.0, 1.0, SCAN_LAMBDAS)
 _END_LAMBDA_GRID = (np.arange(END_LAMBDAS) + 0.5) / END_LAMBDAS
+_HINT_SCALE = 2.0 ** np.linspace(HINT_OCTAVES, -HINT_OCTAVES, HINT_STEPS)
+_HINT_LAMBDA_GRID = HINT_LAMBDA * np.linspace(-1.0, 1.0, HINT_LAMBDAS)
+_U_STEP_GRID = 2.0 ** (-np.arange(U_STEPS) / 2.0)
+# Both ends included: the upper one may fit with the finer join parameters.
+_REFINE_GRID = np.linspace(0.0, 1.0, REFINE + 1)
+_REFINE_LAMBDA_GRID = np.linspace(-1.0, 1.0, REFINE_LAMBDAS)
 
 
 @dataclass(frozen=True, slots=True)
@@ -134,17 +145,17 @@ class _Biarcs:
     ok: BoolArray
 
 
-def _rows(*values: Float, like: FloatArray) -> list[FloatArray]:
-    """Scalars or per-candidate arrays, as arrays shaped like ``like``."""
-    return [np.broadcast_to(np.asarray(v, dtype=np.float64), like.shape) for v in values]
-
-
 def _biarcs(
-    k: Float, m: Float, u0: Float, u1: FloatArray, lam: FloatArray, exact: bool = True
+    k: FloatArray,
+    m: FloatArray,
+    u0: FloatArray,
+    u1: FloatArray,
+    lam: FloatArray,
+    exact: bool = True,
 ) -> _Biarcs:
     """Sabin's-circle biarcs; ``exact=False`` (screening) finds the joint's split parameter
-    by a few plain Newton steps instead of the bracketed iteration."""
-    k, m, u0 = _rows(k, m, u0, like=u1)
+    by a few plain Newton steps instead of the bracketed iteration. The arguments broadcast
+    together (``exact`` needs them all of one shape)."""
     ax, ay = canonical.point(k, m, u0)
     dx, dy = canonical.offset(k, m, u0, u1)
     phi0 = canonical.direction_rad(k, m, u0 * u0)
@@ -167,10 +178,11 @@ def _biarcs(
     return _Biarcs(u1, lam, phi0, psi, phi1, kappa0, kappa1, gx, gy, split, ok)
 
 
-def _verify(k: Float, m: Float, u0: Float, b: _Biarcs, tol: Float) -> tuple[FloatArray, ...]:
+def _verify(
+    k: FloatArray, m: FloatArray, u0: FloatArray, b: _Biarcs, tol: FloatArray
+) -> tuple[FloatArray, ...]:
     """Exact deviations of both arcs of each candidate: ``(dev0, u0_at, dev1, u1_at)``."""
     n = b.u1.shape[0]
-    k, m, u0, tol = _rows(k, m, u0, tol, like=b.u1)
     ax, ay = canonical.point(k, m, u0)
     bx, by = canonical.point(k, m, b.u1)
     d = arc_deviation(
@@ -402,15 +414,14 @@ def _search_many(
     n = k.size
     hint, lam_hint = hint.copy(), lam_hint.copy()
     span = 1.0 - u0
-    full = u0[:, None] + span[:, None] * 2.0 ** (-np.arange(U_STEPS) / 2.0)[None, :]
+    full = u0[:, None] + span[:, None] * _U_STEP_GRID[None, :]
     full[:, 0] = 1.0
-    octaves = np.linspace(HINT_OCTAVES, -HINT_OCTAVES, HINT_STEPS)
-    near = np.minimum(u0[:, None] + hint[:, None] * 2.0 ** octaves[None, :], 1.0)
+    near = np.minimum(u0[:, None] + hint[:, None] * _HINT_SCALE[None, :], 1.0)
     hinted = (hint > 0.0) & (hint < span)
     lam_full = np.broadcast_to(_LAMBDA_GRID, (n, LAMBDAS))
     lam_scan = np.broadcast_to(_SCAN_LAMBDA_GRID, (n, SCAN_LAMBDAS))
     lam_near = np.clip(
-        lam_hint[:, None] + HINT_LAMBDA * np.linspace(-1.0, 1.0, HINT_LAMBDAS)[None, :],
+        lam_hint[:, None] + _HINT_LAMBDA_GRID[None, :],
         LAMBDA_MARGIN,
         1.0 - LAMBDA_MARGIN,
     )
@@ -458,9 +469,9 @@ def _search_many(
     lam_hint[scan] = lam_top[scan]
     hinted[scan] = has[scan] & (u_top[scan] < 1.0)
     has[scan] &= u_top[scan] >= 1.0
-    near = np.minimum(u0[:, None] + hint[:, None] * 2.0 ** octaves[None, :], 1.0)
+    near = np.minimum(u0[:, None] + hint[:, None] * _HINT_SCALE[None, :], 1.0)
     lam_near = np.clip(
-        lam_hint[:, None] + HINT_LAMBDA * np.linspace(-1.0, 1.0, HINT_LAMBDAS)[None, :],
+        lam_hint[:, None] + _HINT_LAMBDA_GRID[None, :],
         LAMBDA_MARGIN,
         1.0 - LAMBDA_MARGIN,
     )
@@ -481,9 +492,7 @@ def _search_many(
 
     refining = has & (u_top < 1.0)
     u_star = u_top.copy()
-    # Both ends included: the upper one may fit with the finer join parameters.
-    steps = np.linspace(0.0, 1.0, REFINE + 1)
-    lam_steps = np.linspace(-1.0, 1.0, REFINE_LAMBDAS)
+    steps, lam_steps = _REFINE_GRID, _REFINE_LAMBDA_GRID
     for _ in range(REFINE_ROUNDS):
         rows = np.flatnonzero(refining)
         if rows.size == 0:
@@ -546,12 +555,54 @@ def _prove(
     uu = np.where(cand_ok, cand_u, 1.0).ravel()
     with np.errstate(invalid="ignore", divide="ignore"):
         b = _biarcs(kk, mm, u00, uu, cand_l.ravel())
-        d0, w0, d1, w1 = _verify(kk, mm, u00, b, tt)
-    good = ((d0 <= tt) & (d1 <= tt) & cand_ok.ravel() & b.ok).reshape(n, rep)
+        usable = cand_ok.ravel() & b.ok
+        if n * rep <= FLOAT_ELEMENTS:
+            d0, w0, d1, w1 = _verify_lazily(kk, mm, u00, b, tt, usable.reshape(n, rep))
+        else:
+            d0, w0, d1, w1 = _verify(kk, mm, u00, b, tt)
+    good = ((d0 <= tt) & (d1 <= tt) & usable).reshape(n, rep)
     pick = np.arange(n) * rep + np.argmax(good, axis=1)
     chosen = _Biarcs(*(np.asarray(getattr(b, f))[pick] for f in _Biarcs.__slots__))
     found: BoolArray = np.asarray(good.any(axis=1))
-    return found, chosen, (d0[pick], w0[pick], d1[pick], w1[pick])
+    # Rows without a proven rung have no deviations (the lazy proof does not measure them all).
+    devs = tuple(np.where(found, d[pick], np.nan) for d in (d0, w0, d1, w1))
+    return found, chosen, devs
+
+
+def _verify_lazily(
+    k: FloatArray, m: FloatArray, u0: FloatArray, b: _Biarcs, tol: FloatArray, usable: BoolArray
+) -> tuple[FloatArray, ...]:
+    """:func:`_verify` of a few candidates (rows × rungs), one arc at a time in floats, in
+    order, stopping at each row's first proven rung: the rungs after it, and the second arc
+    of a rung whose first arc fails, stay unmeasured (NaN, never proven). Where measured, the
+    numbers are those of :func:`_verify`."""
+    d0, w0, d1, w1 = (np.full(b.u1.shape[0], np.nan) for _ in range(4))
+    ax, ay = canonical.point(k, m, u0)
+    bx, by = canonical.point(k, m, b.u1)
+    columns = (
+        *(k, m, u0, tol, ax, ay, bx, by, b.gx, b.gy, b.split, b.u1),
+        *(b.phi0, np.cos(b.phi0), np.sin(b.phi0), b.kappa0),
+        *(b.psi, np.cos(b.psi), np.sin(b.psi), b.kappa1),
+    )
+    values = list(zip(*(np.asarray(c).tolist() for c in columns), strict=True))
+    rungs = usable.shape[1]
+    proven: set[int] = set()
+    for i in np.flatnonzero(usable).tolist():
+        row = i // rungs
+        if row in proven:
+            continue
+        kk, mm, uu, tt, xa, ya, xb, yb, gx, gy, split, u1 = values[i][:12]
+        phi0, c0, s0, kappa0, psi, c1, s1, kappa1 = values[i][12:]
+        d0[i], w0[i] = one_arc_deviation(
+            kk, mm, xa, ya, phi0, c0, s0, kappa0, gx, gy, uu, split, tt
+        )
+        if d0[i] <= tt:
+            d1[i], w1[i] = one_arc_deviation(
+                kk, mm, gx, gy, psi, c1, s1, kappa1, xb, yb, split, u1, tt
+            )
+            if d1[i] <= tt:
+                proven.add(row)
+    return d0, w0, d1, w1
 
 
 def fewest_chains(

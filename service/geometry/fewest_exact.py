@@ -54,14 +54,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from . import fewest_exact_one
+from .fewest_exact_one import CENTRE_ULPS
 from .roots import bracketed_newton
 from .types import BoolArray, FloatArray
 
 Float = float | FloatArray
 
-#: An arc's centre is stored with an error of about ``eps·radius``; this many ulps of the radius
-#: must fit in the tolerance (error ≤ 1e-4 of it).
-CENTRE_ULPS = 1e4
 _EPS = float(np.finfo(np.float64).eps)
 
 #: Root levels of the cascade: derivative orders 4, 3, 2, 1, 0 of the quintic ``h``.
@@ -69,6 +68,11 @@ _LEVELS = (4, 3, 2, 1, 0)
 
 #: Newton steps of screening's split parameter (:func:`split_guess`).
 SPLIT_STEPS = 3
+
+#: Calls of :func:`joint_split` and :func:`arc_deviation` with at most this many elements run
+#: element by element in floats (:mod:`service.geometry.fewest_exact_one`, the same numbers):
+#: below it numpy's per-call overhead costs more than the arithmetic.
+FLOAT_ELEMENTS = 8
 
 
 @dataclass(frozen=True, slots=True)
@@ -97,7 +101,9 @@ def radial(
     py = m * u2 * u - jy
     nx, ny = -np.sin(phi), np.cos(phi)
     numerator = kappa * (px * px + py * py) - 2.0 * (px * nx + py * ny)
-    result: FloatArray = np.abs(numerator) / (np.hypot(kappa * px - nx, kappa * py - ny) + 1.0)
+    ax, ay = kappa * px - nx, kappa * py - ny
+    # Not np.hypot: the float path's math.hypot may differ from it in the last bit.
+    result: FloatArray = np.abs(numerator) / (np.sqrt(ax * ax + ay * ay) + 1.0)
     return result
 
 
@@ -110,6 +116,20 @@ def joint_split(
     used here, so a sign change over ``[0, 1]`` brackets its only root.
     """
     tx, ty = np.cos(phi), np.sin(phi)
+    if jx.size <= FLOAT_ELEMENTS:
+        return np.array(
+            [
+                fewest_exact_one.joint_split(*args)
+                for args in zip(
+                    *(
+                        np.broadcast_to(v, jx.shape).ravel().tolist()
+                        for v in (k, m, jx, jy, tx, ty)
+                    ),
+                    strict=True,
+                )
+            ],
+            dtype=np.float64,
+        ).reshape(jx.shape)
 
     def f(s: FloatArray) -> tuple[FloatArray, FloatArray]:
         s2 = s * s
@@ -215,8 +235,62 @@ def arc_deviation(
 
     Arcs so flat that their world centre (``radius/tolerance`` beyond ``1/(CENTRE_ULPS·eps)``)
     cannot be written in double precision to a small fraction of the tolerance are refused
-    (``inf``): the numbers handed out would not carry the guarantee.
+    (``inf``): the numbers handed out would not carry the guarantee. ``u`` is meaningful
+    only where the value is finite.
+
+    Up to ``FLOAT_ELEMENTS`` arcs are measured one by one in floats, with the same result.
     """
+    n = jx.shape[0]
+    tol = np.broadcast_to(np.asarray(tolerance, dtype=np.float64), jx.shape)
+    if n > FLOAT_ELEMENTS:
+        return _arc_deviation_arrays(k, m, jx, jy, phi, kappa, ex, ey, s_lo, s_hi, tol)
+    tx, ty = np.cos(phi), np.sin(phi)
+    value, u = np.empty(n), np.empty(n)
+    columns = (k, m, jx, jy, phi, tx, ty, kappa, ex, ey, s_lo, s_hi, tol)
+    for i, args in enumerate(zip(*(c.tolist() for c in columns), strict=True)):
+        value[i], u[i] = one_arc_deviation(*args)
+    return ArcDeviation(value=value, u=u)
+
+
+def one_arc_deviation(
+    k: float,
+    m: float,
+    jx: float,
+    jy: float,
+    phi: float,
+    tx: float,
+    ty: float,
+    kappa: float,
+    ex: float,
+    ey: float,
+    s_lo: float,
+    s_hi: float,
+    tolerance: float,
+) -> tuple[float, float]:
+    """:func:`arc_deviation` of one arc, ``(value, u)``, given ``tx, ty = np.cos(φ), np.sin(φ)``:
+    in floats, or by the arrays where the float restatement hands the arc back."""
+    one = fewest_exact_one.arc_deviation(k, m, jx, jy, tx, ty, kappa, ex, ey, s_lo, s_hi, tolerance)
+    if one is not None:
+        return one
+    d = _arc_deviation_arrays(
+        *(np.array([v]) for v in (k, m, jx, jy, phi, kappa, ex, ey, s_lo, s_hi, tolerance))
+    )
+    return float(d.value[0]), float(d.u[0])
+
+
+def _arc_deviation_arrays(
+    k: FloatArray,
+    m: FloatArray,
+    jx: FloatArray,
+    jy: FloatArray,
+    phi: FloatArray,
+    kappa: FloatArray,
+    ex: FloatArray,
+    ey: FloatArray,
+    s_lo: FloatArray,
+    s_hi: FloatArray,
+    tolerance: FloatArray,
+) -> ArcDeviation:
     valid = _is_graph(k, m, jx, jy, phi, kappa, ex, ey, s_lo, s_hi)
     valid &= (kappa == 0.0) | (np.abs(kappa) * tolerance >= CENTRE_ULPS * _EPS)
     nx, ny = -np.sin(phi), np.cos(phi)
@@ -226,7 +300,7 @@ def arc_deviation(
     coeffs[:, 2] = -kappa * (k * jx + m * jy) - (k * nx + m * ny)
     coeffs[:, 3] = 4.0 * k * kappa
     coeffs[:, 5] = kappa * (k * k + m * m)
-    points = _cascade_roots(coeffs, s_lo, s_hi)
+    points = _cascade_roots(coeffs, s_lo, s_hi, valid)
     n = points.shape[1]
     e = radial(
         np.repeat(k, n),
@@ -281,9 +355,13 @@ def _is_graph(
     return ok
 
 
-def _cascade_roots(coeffs: FloatArray, lo: FloatArray, hi: FloatArray) -> FloatArray:
+def _cascade_roots(
+    coeffs: FloatArray, lo: FloatArray, hi: FloatArray, valid: BoolArray
+) -> FloatArray:
     """Every root in ``[lo, hi]`` of each row's polynomial (ascending ``coeffs``, degree 5),
     plus the ends and the roots of its derivatives, sorted per row (repeats moved to the end).
+    Rows not ``valid`` (refused whatever their roots) do not decide the shortcut below, so
+    that a valid row's roots do not depend on the others.
 
     Each level adds at most one point per interval, see the module text.
     """
@@ -294,7 +372,7 @@ def _cascade_roots(coeffs: FloatArray, lo: FloatArray, hi: FloatArray) -> FloatA
     points = np.stack([lo, hi], axis=1)
     # h⁽⁴⁾ = 120·c5·u + 24·c4 vanishes only at u = 0 when c4 = 0 (always, for this quintic),
     # so on pieces with lo ≥ 0 it has no interior root and the level can be skipped.
-    skip_top = bool(np.all(coeffs[:, 4] == 0.0)) and bool(np.all(lo >= 0.0))
+    skip_top = bool(np.all(coeffs[:, 4] == 0.0)) and bool(np.all(lo[valid] >= 0.0))
     for level in _LEVELS[1:] if skip_top else _LEVELS:
         c = derivatives[level]
         f = _horner(c, points)
