@@ -349,7 +349,7 @@ def _screen_grid(
     deviation), inf if invalid; candidates broadcast over ``(rows, u1, λ)``, samples on a
     fourth axis."""
     k4, m4, u04 = (v[:, None, None, None] for v in (k, m, u0))
-    ok = np.broadcast_to(b.ok, b.psi.shape)
+    ok = b.ok  # (rows, u1, λ), like psi
     split = np.where(ok, b.split, 0.5 * (u0[:, None, None] + b.u1))[..., None]
     ax, ay = canonical.point(k4, m4, u04)
     ua = u04 + (split - u04) * samples

@@ -113,23 +113,20 @@ def joint_split(
     """The ``s ∈ [0, 1]`` where the spiral crosses the normal line at joint ``J``; NaN if none.
 
     ``f(s) = (Q(s) − J)·T`` has ``f'(s) = 3(T_x(1 + k·s²) + T_y·m·s²) > 0`` for the directions
-    used here, so a sign change over ``[0, 1]`` brackets its only root.
+    used here, so a sign change over ``[0, 1]`` brackets its only root. Up to
+    ``FLOAT_ELEMENTS`` joints are solved one by one in floats, with the same result.
     """
     tx, ty = np.cos(phi), np.sin(phi)
     if jx.size <= FLOAT_ELEMENTS:
-        return np.array(
-            [
-                fewest_exact_one.joint_split(*args)
-                for args in zip(
-                    *(
-                        np.broadcast_to(v, jx.shape).ravel().tolist()
-                        for v in (k, m, jx, jy, tx, ty)
-                    ),
-                    strict=True,
-                )
-            ],
-            dtype=np.float64,
-        ).reshape(jx.shape)
+        columns = (
+            np.broadcast_to(v, jx.shape) if v.shape != jx.shape else v
+            for v in (k, m, jx, jy, tx, ty)
+        )
+        splits = [
+            fewest_exact_one.joint_split(*args)
+            for args in zip(*(c.ravel().tolist() for c in columns), strict=True)
+        ]
+        return np.array(splits, dtype=np.float64).reshape(jx.shape)
 
     def f(s: FloatArray) -> tuple[FloatArray, FloatArray]:
         s2 = s * s
