@@ -5,7 +5,8 @@ Starts ``python -m service`` as a subprocess (a pool of 2 workers) and measures,
 1. with ``wrk`` (one load generator, one thread, the same settings for both): requests/s of
    ``GET /healthz`` and of ``POST /v1/approximate`` (the paper's spiral at 1e-3, 12 arcs) in
    turn, three rounds (this machine's speed drifts over seconds), and the median of the
-   rounds' ratios (target ≥ 0.5);
+   rounds' ratios (target ≥ 0.5); then one round each at 8 and 64 connections, because the
+   ratio grows with the load (more requests coalesce into one worker task);
 2. arcs/s through ``POST /v1/approximate/batch`` (1000 paper spirals at 1e-5, 54 000 arcs,
    the JSON made, sent and received in full), with wrk one and two batches at a time, and
    with an httpx client that also parses the reply (and checks its 54 000 arcs), against
@@ -55,6 +56,9 @@ WRK_SECONDS = 5
 RATIO_ROUNDS = 3
 WRK_CONNECTIONS = 32
 RATIO_TARGET = 0.5
+#: Other loads, one round each: the ratio depends on how many requests coalesce into one
+#: worker task. 64 is the default queue capacity, the most in flight without a 503.
+SWEEP_CONNECTIONS = (8, 64)
 SPEEDUP_TARGET = 20.0
 
 
@@ -165,6 +169,13 @@ def measure_ratio(binary: str, url: str, scratch: Path) -> None:
     ratio = statistics.median(a / h for h, a in rounds)
     verdict = "meets" if ratio >= RATIO_TARGET else "misses"
     print(f"  median ratio approximate / healthz {ratio:.2f}   ({verdict} ≥ {RATIO_TARGET})")
+    for connections in SWEEP_CONNECTIONS:
+        healthz = wrk(binary, f"{url}/healthz", connections=connections)
+        approximate = wrk(binary, f"{url}/v1/approximate", script=script, connections=connections)
+        print(
+            f"  at {connections:>2} connections, one round: GET /healthz {healthz:8,.0f}/s  "
+            f"POST /v1/approximate {approximate:7,.0f}/s  ratio {approximate / healthz:.2f}"
+        )
 
 
 # -- batch arcs/s -----------------------------------------------------------------------------

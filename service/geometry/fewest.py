@@ -27,7 +27,9 @@ screened fit and, where both fail, a ladder of slightly shorter pieces are verif
 deviation exactly (derivative cascade on the quintic ``(Q − C)·Q'``, plus the polar-graph
 conditions that make the radial distance the Hausdorff distance; see that module). Only
 verified biarcs are kept, so the tolerance is guaranteed exactly as for ``subdivide``; the
-result is G1 by construction and ends at ``Q(1)`` with the end tangent.
+result is G1 by construction and ends at ``Q(1)`` with the end tangent. A few candidates (a
+single spiral's step) are proven one arc at a time in floats, in order, stopping at the first
+proven one (:mod:`service.geometry.fewest_exact_one`, the same numbers as the array proof).
 
 **Tail merge.** Greedy longest pieces leave a short last biarc; the last two biarcs are then
 replaced by three arcs whose first joint lies off the spiral, when such a "triarc" is proven

@@ -46,6 +46,9 @@ root in closed form, so the iteration runs on levels 2, 1 and 0 only. The maximu
 of ``e`` over the piece is the largest value at the piece's ends and at these roots; no sample
 is involved. The distance at the ends is the exact distance between the spiral point on the
 joint's normal line and the joint.
+
+Calls with a few elements run element by element in Python floats
+(:mod:`service.geometry.fewest_exact_one`), bit for bit the same numbers.
 """
 
 from __future__ import annotations
