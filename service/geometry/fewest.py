@@ -55,7 +55,6 @@ from . import canonical
 from .assemble import FLAT_SWEEP_RAD, Frames, splines
 from .errors import GeometryError
 from .fewest_exact import (
-    FLOAT_ELEMENTS,
     arc_deviation,
     joint_split,
     one_arc_deviation,
@@ -95,6 +94,10 @@ LAMBDA_MARGIN = 1e-3
 #: The pieces proven where neither the interpolated crossing nor the longest screened fit
 #: is: these fractions of the longest screened span.
 LADDER = np.array([0.998, 0.994, 0.985, 0.96, 0.9])
+
+#: Up to this many candidates (rows × rungs) are proven one arc at a time in floats, rung
+#: after rung until one is proven; more go to numpy all at once. Either way the same result.
+PROVE_IN_FLOATS = 8
 
 #: Screening aims at these fractions of the tolerance, in turn, until a candidate is proven.
 SCREEN_FACTORS = (0.999, 0.99, 0.95, 0.8, 0.5)
@@ -558,7 +561,7 @@ def _prove(
     with np.errstate(invalid="ignore", divide="ignore"):
         b = _biarcs(kk, mm, u00, uu, cand_l.ravel())
         usable = cand_ok.ravel() & b.ok
-        if n * rep <= FLOAT_ELEMENTS:
+        if n * rep <= PROVE_IN_FLOATS:
             d0, w0, d1, w1 = _verify_lazily(kk, mm, u00, b, tt, usable.reshape(n, rep))
         else:
             d0, w0, d1, w1 = _verify(kk, mm, u00, b, tt)

@@ -53,6 +53,7 @@ Calls with a few elements run element by element in Python floats
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -105,8 +106,13 @@ def radial(
     nx, ny = -np.sin(phi), np.cos(phi)
     numerator = kappa * (px * px + py * py) - 2.0 * (px * nx + py * ny)
     ax, ay = kappa * px - nx, kappa * py - ny
-    # Not np.hypot: the float path's math.hypot may differ from it in the last bit.
-    result: FloatArray = np.abs(numerator) / (np.sqrt(ax * ax + ay * ay) + 1.0)
+    # Not np.hypot: the float path's math.hypot may differ from it in the last bit. A square
+    # that overflows (a circle far too small) must not read as distance 0: inf, refused.
+    with np.errstate(over="ignore", invalid="ignore"):
+        square = ax * ax + ay * ay
+        result: FloatArray = np.where(
+            np.isfinite(square), np.abs(numerator) / (np.sqrt(square) + 1.0), np.inf
+        )
     return result
 
 
@@ -120,16 +126,23 @@ def joint_split(
     ``FLOAT_ELEMENTS`` joints are solved one by one in floats, with the same result.
     """
     tx, ty = np.cos(phi), np.sin(phi)
-    if jx.size <= FLOAT_ELEMENTS:
-        columns = (
-            np.broadcast_to(v, jx.shape) if v.shape != jx.shape else v
-            for v in (k, m, jx, jy, tx, ty)
-        )
-        splits = [
-            fewest_exact_one.joint_split(*args)
-            for args in zip(*(c.ravel().tolist() for c in columns), strict=True)
-        ]
-        return np.array(splits, dtype=np.float64).reshape(jx.shape)
+    shape = np.broadcast_shapes(k.shape, m.shape, jx.shape, jy.shape, phi.shape)
+    if math.prod(shape) > FLOAT_ELEMENTS:
+        return _joint_split_arrays(k, m, jx, jy, tx, ty)
+    columns = [np.broadcast_to(v, shape).ravel() for v in (k, m, jx, jy, tx, ty)]
+    splits = []
+    for i, args in enumerate(zip(*(c.tolist() for c in columns), strict=True)):
+        try:
+            splits.append(fewest_exact_one.joint_split(*args))
+        except fewest_exact_one.HandBackError:
+            splits.append(float(_joint_split_arrays(*(c[i : i + 1] for c in columns))[0]))
+    return np.array(splits, dtype=np.float64).reshape(shape)
+
+
+def _joint_split_arrays(
+    k: FloatArray, m: FloatArray, jx: FloatArray, jy: FloatArray, tx: FloatArray, ty: FloatArray
+) -> FloatArray:
+    """:func:`joint_split` by the arrays, given the direction's cosine and sine (one shape)."""
 
     def f(s: FloatArray) -> tuple[FloatArray, FloatArray]:
         s2 = s * s
@@ -291,7 +304,9 @@ def _arc_deviation_arrays(
     s_hi: FloatArray,
     tolerance: FloatArray,
 ) -> ArcDeviation:
-    valid = _is_graph(k, m, jx, jy, phi, kappa, ex, ey, s_lo, s_hi)
+    # A piece outside the spiral's [0, 1] is none of its pieces (the chains' pieces tile it).
+    valid = (s_lo >= 0.0) & (s_hi <= 1.0)
+    valid &= _is_graph(k, m, jx, jy, phi, kappa, ex, ey, s_lo, s_hi)
     valid &= (kappa == 0.0) | (np.abs(kappa) * tolerance >= CENTRE_ULPS * _EPS)
     nx, ny = -np.sin(phi), np.cos(phi)
     coeffs = np.zeros((jx.shape[0], 6))

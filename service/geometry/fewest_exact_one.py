@@ -12,8 +12,9 @@ Sines and cosines are not restated (numpy's may differ from ``math``'s in the la
 callers pass them in, computed by numpy.
 
 Where the iteration meets something the plain restatement does not mirror (a NaN, a zero
-slope, a piece starting below ``u = 0``), the functions give up and return ``None``; the
-caller then runs the array version on that one element.
+or non-finite slope), the functions give up (:class:`HandBackError`, or ``None``); the caller
+then runs the array version on that one element. (A zero's sign may differ where the array
+sort orders ``-0.0`` and ``0.0`` differently; the values are equal.)
 """
 
 from __future__ import annotations
@@ -35,6 +36,16 @@ class HandBackError(Exception):
     """The element left what the float restatement mirrors: the caller uses numpy."""
 
 
+def _maximum(a: float, b: float) -> float:
+    """``np.maximum``: the second on a tie (signed zeros), NaN from either."""
+    return a if a > b or a != a else b
+
+
+def _minimum(a: float, b: float) -> float:
+    """``np.minimum``: the second on a tie, NaN from either."""
+    return a if a < b or a != a else b
+
+
 def _step(value: float, slope: float) -> float:
     if slope == 0.0 or not math.isfinite(value) or not math.isfinite(slope):
         raise HandBackError
@@ -44,7 +55,7 @@ def _step(value: float, slope: float) -> float:
 def newton(fn: ValueAndSlope, lo: float, hi: float, start: float) -> float:
     """``bracketed_newton`` for one element: plain steps, then the safeguarded iteration."""
     resolution = RESOLUTION_ULPS * _EPS * max(abs(lo), abs(hi))
-    x = min(max(start, lo), hi)
+    x = _minimum(_maximum(start, lo), hi)
     for _ in range(FIXED_ITERATIONS):
         step = _step(*fn(x))
         x = x - step
@@ -61,7 +72,7 @@ def newton(fn: ValueAndSlope, lo: float, hi: float, start: float) -> float:
 
 
 def _safeguarded(fn: ValueAndSlope, lo: float, hi: float, start: float, resolution: float) -> float:
-    x = min(max(start, lo), hi)
+    x = _minimum(_maximum(start, lo), hi)
     sign = 1.0 if fn(lo)[0] <= 0.0 else -1.0
     for _ in range(MAX_ITERATIONS):
         value, slope = fn(x)
@@ -157,14 +168,14 @@ def arc_deviation(
     tolerance: float,
 ) -> tuple[float, float] | None:
     """``fewest_exact.arc_deviation`` for one arc of direction ``(tx, ty) = (cos φ, sin φ)``:
-    ``(value, u)``, value ``inf`` where the arc is refused; ``None`` to hand it to numpy."""
+    ``(value, u)``, value ``inf`` where the arc is refused; ``None`` to hand it to numpy.
+    Its piece lies in ``[0, 1]`` (else it is refused), so the cascade starts at level 3."""
     try:
-        valid = is_graph(k, m, jx, jy, tx, ty, kappa, ex, ey, s_lo, s_hi)
+        valid = s_lo >= 0.0 and s_hi <= 1.0
+        valid = valid and is_graph(k, m, jx, jy, tx, ty, kappa, ex, ey, s_lo, s_hi)
         valid = valid and (kappa == 0.0 or abs(kappa) * tolerance >= CENTRE_ULPS * _EPS)
         if not valid:
             return math.inf, s_lo
-        if not s_lo >= 0.0:
-            return None
         points = _cascade_roots(k, m, jx, jy, -ty, tx, kappa, s_lo, s_hi)
     except HandBackError:
         return None
@@ -176,7 +187,8 @@ def arc_deviation(
         py = m * u2 * u - jy
         numerator = kappa * (px * px + py * py) - 2.0 * (px * nx + py * ny)
         ax, ay = kappa * px - nx, kappa * py - ny
-        e = abs(numerator) / (math.sqrt(ax * ax + ay * ay) + 1.0)
+        square = ax * ax + ay * ay
+        e = abs(numerator) / (math.sqrt(square) + 1.0) if square < math.inf else math.inf
         if math.isnan(e):
             return None
         if e > worst:

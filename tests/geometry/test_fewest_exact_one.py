@@ -91,18 +91,46 @@ def test_joint_split_in_floats_is_the_array_result(seed: int) -> None:
     assert math.isnan(batch[0])
 
 
-def test_a_piece_before_the_spiral_start_is_handed_back() -> None:
-    # The float cascade assumes pieces at u ≥ 0 (it skips the fourth derivative's level);
-    # an arc measured from u < 0 goes to numpy, with numpy's number.
-    args = [a[:1].copy() for a in _arcs(7, 1)]
-    args[8][0] = -0.05  # s_lo
-    floats = one.arc_deviation(
-        *(float(a[0]) for a in (*args[:4], np.cos(args[4]), np.sin(args[4]), *args[5:]))
-    )
-    assert floats is None or not math.isfinite(floats[0])
-    got = fewest_exact.arc_deviation(*args)
-    want = fewest_exact._arc_deviation_arrays(*args)
-    assert _bits(got.value) == _bits(want.value)
+def test_a_piece_outside_the_spiral_is_refused_alike() -> None:
+    # Pieces tile u ∈ [0, 1]; one that starts before 0 or ends after 1 is refused by both.
+    base = _arcs(7, 1)
+    for index, value in ((8, -0.05), (9, 1.05)):  # s_lo, s_hi
+        args = [a[:1].copy() for a in base]
+        args[index][0] = value
+        assert fewest_exact.arc_deviation(*args).value[0] == math.inf
+        assert fewest_exact._arc_deviation_arrays(*args).value[0] == math.inf
+
+
+def test_a_circle_too_small_to_square_is_refused_not_zero() -> None:
+    # κ·‖Q − J‖ beyond 1e154 overflows the square in the distance's denominator, which would
+    # read as distance 0; both paths refuse the arc instead. (A real arc is far larger.)
+    k, m, u, off, kappa, sweep = 0.1, 0.5, 0.5, 0.1, 1e160, 1e-3
+    q = np.array([3 * u + k * u**3, m * u**3])
+    phi = math.atan2(3 * m * u * u, 3 + 3 * k * u * u)
+    normal = np.array([-math.sin(phi), math.cos(phi)])
+    joint = q + off * normal
+    centre = joint + normal / kappa
+    turn = np.array([[math.cos(sweep), -math.sin(sweep)], [math.sin(sweep), math.cos(sweep)]])
+    end = centre + turn @ (joint - centre)
+    arr = lambda *v: [np.array([x], dtype=np.float64) for x in v]  # noqa: E731
+    s_lo = fewest_exact.joint_split(*arr(k, m, joint[0], joint[1], phi))
+    s_hi = fewest_exact.joint_split(*arr(k, m, end[0], end[1], phi + sweep))
+    args = [*arr(k, m, joint[0], joint[1], phi, kappa, end[0], end[1]), s_lo, s_hi, *arr(1e-3)]
+    assert fewest_exact.arc_deviation(*args).value[0] == math.inf
+    assert fewest_exact._arc_deviation_arrays(*args).value[0] == math.inf
+    # The circle's radial distance itself (the screen of the proof) is not 0 but refused.
+    assert fewest_exact.radial(k, m, joint[0], joint[1], phi, kappa, np.array([0.5]))[0] > 0.0
+
+
+def test_a_joint_split_the_floats_cannot_follow_is_handed_back() -> None:
+    # k = 1e308 overflows the Newton step in floats (a non-finite value): numpy's answer.
+    args = [np.array([v]) for v in (1e308, 0.0, 3.0, 0.0, 0.0)]
+    with pytest.raises(one.HandBackError):
+        one.joint_split(1e308, 0.0, 3.0, 0.0, 1.0, 0.0)
+    many = [np.repeat(a, fewest_exact.FLOAT_ELEMENTS + 1) for a in args]
+    with np.errstate(over="ignore", invalid="ignore"):  # the array iteration overflows too
+        alone, batch = fewest_exact.joint_split(*args), fewest_exact.joint_split(*many)
+    assert _bits(alone) == _bits(batch[:1])
 
 
 def _columns(spline: object) -> list[bytes]:
@@ -127,7 +155,7 @@ def test_fewest_results_do_not_depend_on_the_float_path(
         cases.append((spiral, spiral.chord * 10 ** float(rng.uniform(-6, -1))))
     fast = [approximate(s, t, "fewest-arcs") for s, t in cases]
     monkeypatch.setattr(fewest_exact, "FLOAT_ELEMENTS", 0)
-    monkeypatch.setattr(fewest_module, "FLOAT_ELEMENTS", 0)
+    monkeypatch.setattr(fewest_module, "PROVE_IN_FLOATS", 0)
     plain = [approximate(s, t, "fewest-arcs") for s, t in cases]
     many = approximate_many([s for s, _ in cases], [t for _, t in cases], "fewest-arcs")
     for f, p, b in zip(fast, plain, many, strict=True):
