@@ -204,3 +204,67 @@ def test_screening_distance_is_the_radial_distance() -> None:
     want = np.abs(np.hypot(qx - (jx + nx / kappa), qy - (jy + ny / kappa)) - 1 / np.abs(kappa))
     slack = 64 * np.finfo(float).eps * (1 / np.abs(kappa) + 10)
     assert np.all(np.abs(got - want) <= 1e-9 * want + slack)
+
+
+def _paper_canonical(tolerance: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    spiral = Spiral.from_parameters(**PAPER, end_curvature=0.41574)
+    th = math.radians(PAPER["turn_angle_deg"])  # type: ignore[arg-type]
+    k = np.array([1.2 * math.cos(th) ** 2 - 1.0])
+    m = np.array([1.2 * math.cos(th) * math.sin(th)])
+    return k, m, np.array([tolerance / spiral.a])
+
+
+def test_newton_steps_are_proven_and_reach_the_tolerance(monkeypatch: pytest.MonkeyPatch) -> None:
+    # Every arc of the chain, measured here from scratch (radial distance of 4000 samples of
+    # its spiral piece to its circle), is within the tolerance; the pieces that Newton's step
+    # found reach at least NEWTON_FLOOR of it, and it found most of them.
+    from service.geometry import fewest
+
+    k, m, tol = _paper_canonical(1e-5)
+    newton_ends: list[float] = []
+    real = fewest._newton_many
+
+    def spy(*args):  # type: ignore[no-untyped-def]
+        found, b, devs, jac = real(*args)
+        newton_ends.extend(b.u1[found].tolist())
+        return found, b, devs, jac
+
+    monkeypatch.setattr(fewest, "_newton_many", spy)
+    (chain,) = fewest.fewest_chains(k, m, tol, np.array([100]))
+    assert chain is not None
+    kk, mm, t = float(k[0]), float(m[0]), float(tol[0])
+    worst = []
+    for i in range(chain.kappa.size):
+        u = np.linspace(chain.s[i], chain.s[i + 1], 4000)
+        qx, qy = 3 * u + kk * u**3, mm * u**3
+        kappa, phi = chain.kappa[i], chain.phi[i]
+        cx = chain.jx[i] - math.sin(phi) / kappa
+        cy = chain.jy[i] + math.cos(phi) / kappa
+        worst.append(float(np.max(np.abs(np.hypot(qx - cx, qy - cy) - 1 / abs(kappa)))))
+    assert max(worst) <= t * (1 + 1e-9)
+    assert len(newton_ends) >= 10
+    ends = chain.s[2::2]  # each biarc ends at every second split parameter
+    for u1 in newton_ends:
+        (i,) = np.flatnonzero(ends == u1)
+        assert max(worst[2 * i], worst[2 * i + 1]) >= fewest.NEWTON_FLOOR * t * (1 - 1e-4)
+
+
+def test_a_newton_miss_leaves_the_grid_search_its_row(monkeypatch: pytest.MonkeyPatch) -> None:
+    # With the floor out of reach the Newton step finds nothing: every chain must then be the
+    # chain of the grids alone (no state of the failed iteration leaks into the walk).
+    from service.geometry import fewest
+
+    spirals_tol = [_paper_canonical(t) for t in (1e-4, 1e-5)]
+    k = np.concatenate([s[0] for s in spirals_tol])
+    m = np.concatenate([s[1] for s in spirals_tol])
+    tol = np.concatenate([s[2] for s in spirals_tol])
+    limit = np.array([100, 100])
+    monkeypatch.setattr(fewest, "NEWTON_FLOOR", 2.0)
+    missed = fewest.fewest_chains(k, m, tol, limit)
+    monkeypatch.setattr(fewest, "NEWTON_REACH", 1e9)
+    grids = fewest.fewest_chains(k, m, tol, limit)
+    for a, b in zip(missed, grids, strict=True):
+        assert a is not None
+        assert b is not None
+        for name in a.__slots__:
+            np.testing.assert_array_equal(getattr(a, name), getattr(b, name))
