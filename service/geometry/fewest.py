@@ -758,9 +758,10 @@ def fewest_chains(
     """Greedy longest verified biarcs over ``[0, 1]`` for each spiral, then the tail merge.
 
     The walk runs in lockstep over the batch; a spiral's chain is None where it fails or
-    would need more than ``max_arcs`` arcs. Each step after the first tries
-    :func:`_newton_many` from the previous piece; the grids of :func:`_search_many` take the
-    first step, the pieces near the spiral's end and any row the Newton step leaves."""
+    would need more than ``max_arcs`` arcs. A step whose previous span fits ``NEWTON_REACH``
+    more times before the end tries :func:`_newton_many` from that piece first; the grids of
+    :func:`_search_many` take the first step, the pieces near the end and any row the Newton
+    step leaves."""
     n = k.size
     parts: list[list[list[float]]] = [[[0.0], [0.0], [0.0], [], [0.0], [], []] for _ in range(n)]
     failed = np.zeros(n, dtype=bool)
