@@ -2,8 +2,10 @@
 
 :class:`WorkerPool` runs picklable functions (those of ``service.jobs``) in worker processes
 from the event loop. Each worker is a process with a socket to the server; the event loop
-writes a task to an idle worker's socket and reads the answer from it as an asyncio stream,
-and the socket's end-of-file tells it when the worker has died. No threads are involved
+writes a task to an idle worker's socket, and the socket's protocol (:class:`_Worker`) sets
+the task's answer the moment its last byte arrives, in the loop's I/O callback — no reader
+task has to be woken first — and tells the pool when the socket's end-of-file says the
+worker has died. No threads are involved
 (``ProcessPoolExecutor`` takes two per pool and, with them, the GIL on every task), and a
 worker can be killed and replaced alone:
 
@@ -37,9 +39,9 @@ import pickle
 import signal
 import socket
 import struct
+import typing
 from collections import deque
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
 from multiprocessing.connection import Connection
 from multiprocessing.process import BaseProcess
 from typing import Any, Generic, Literal, TypeVar
@@ -57,8 +59,6 @@ START_TIMEOUT_S = 60.0
 STOP_TIMEOUT_S = 5.0
 
 _READY = b"ready"
-#: Read buffer of a worker's stream; answers are read with readexactly, whatever their size.
-_STREAM_LIMIT = 1 << 20
 
 
 # -- inside a worker process --------------------------------------------------------------
@@ -122,18 +122,72 @@ class _WorkerDiedError(Exception):
     """The worker running a task died before it answered."""
 
 
-@dataclass(eq=False)
-class _Worker:
-    process: BaseProcess
-    reader: asyncio.StreamReader
-    writer: asyncio.StreamWriter
-    #: The answer awaited from this worker, while it runs a task.
-    answer: asyncio.Future[tuple[bool, Any]] | None = None
-    #: Set once the pool has given the worker up (killed, dead or stopping).
-    retired: bool = False
-    ready: asyncio.Future[None] = field(
-        default_factory=lambda: asyncio.get_running_loop().create_future()
-    )
+class _Worker(asyncio.Protocol):
+    """The server's end of one worker process: its socket's protocol.
+
+    It reads the worker's messages (frames of ``multiprocessing.Connection``) as they
+    arrive: the first says the worker is ready, each later one answers the task in
+    ``answer``. The socket's end (the worker has died or stopped) goes to ``on_death``.
+    The protocol exists before its connection, so no message can arrive before it.
+    """
+
+    def __init__(self, process: BaseProcess, on_death: Callable[[_Worker], None]) -> None:
+        self.process = process
+        self._on_death = on_death
+        self._transport: asyncio.Transport | None = None
+        self._buffer = bytearray()
+        #: The answer awaited from this worker, while it runs a task.
+        self.answer: asyncio.Future[tuple[bool, Any]] | None = None
+        #: Set once the pool has given the worker up (killed, dead or stopping).
+        self.retired = False
+        self.ready: asyncio.Future[None] = asyncio.get_running_loop().create_future()
+
+    def connection_made(self, transport: asyncio.BaseTransport) -> None:
+        # uvloop's transports do not subclass asyncio.Transport, but they are streams.
+        self._transport = typing.cast(asyncio.Transport, transport)
+
+    def data_received(self, data: bytes) -> None:
+        buffer = self._buffer
+        buffer += data
+        while True:
+            header = 4
+            if len(buffer) < header:
+                return
+            (size,) = struct.unpack_from("!i", buffer)
+            if size == -1:  # a message of 2 GiB or more
+                header = 12
+                if len(buffer) < header:
+                    return
+                (size,) = struct.unpack_from("!Q", buffer, 4)
+            if len(buffer) < header + size:
+                return
+            message = bytes(buffer[header : header + size])
+            del buffer[: header + size]
+            self._deliver(message)
+
+    def _deliver(self, message: bytes) -> None:
+        if not self.ready.done():
+            self.ready.set_result(None)
+            return
+        answer = self.answer
+        if answer is not None and not answer.done():
+            answer.set_result(pickle.loads(message))
+
+    def connection_lost(self, exc: Exception | None) -> None:
+        self._on_death(self)
+
+    def send(self, message: bytes) -> None:
+        """Write ``message`` (framed) to the worker; buffered by the transport if need be."""
+        if self._transport is not None:
+            self._transport.write(message)
+
+    @property
+    def closing(self) -> bool:
+        return self._transport is None or self._transport.is_closing()
+
+    def close(self) -> None:
+        if self._transport is not None:
+            self._transport.close()
 
 
 class WorkerPool:
@@ -163,7 +217,9 @@ class WorkerPool:
         # Idle workers; one that died while waiting here is skipped when taken.
         self._idle_workers: asyncio.Queue[_Worker] = asyncio.Queue()
         self._starting = 0
+        # One slot per worker: a task holds one from before it takes a worker until it ends.
         self._slots = asyncio.Semaphore(size)
+        self._slots_held = 0
         self._idle = asyncio.Event()
         self._idle.set()
         self._background: set[asyncio.Task[None]] = set()
@@ -205,10 +261,10 @@ class WorkerPool:
         for worker in workers:
             self._retire(worker)
             with contextlib.suppress(OSError, RuntimeError):
-                worker.writer.write(_frame(pickle.dumps(None)))
+                worker.send(_frame(pickle.dumps(None)))
         await asyncio.to_thread(_join_all, [w.process for w in workers])
         for worker in workers:
-            worker.writer.close()
+            worker.close()
         self.state = "stopped"
 
     # -- running tasks -----------------------------------------------------------------
@@ -265,13 +321,26 @@ class WorkerPool:
     ) -> T:
         try:
             async with asyncio.timeout_at(deadline):
-                await self._slots.acquire()
+                await self._take_slot()
         except TimeoutError:
             raise JobTimeoutError(time_limit_s) from None
         try:
             return await self._execute(fn, args, time_limit_s, deadline)
         finally:
-            self._slots.release()
+            self._give_slot()
+
+    async def _take_slot(self) -> None:
+        await self._slots.acquire()
+        self._slots_held += 1
+
+    def _give_slot(self) -> None:
+        self._slots_held -= 1
+        self._slots.release()
+
+    @property
+    def free_slots(self) -> int:
+        """Workers no task has claimed: tasks sent now would run at once."""
+        return self.size - self._slots_held
 
     async def _execute(
         self,
@@ -291,7 +360,7 @@ class WorkerPool:
             worker = await self._idle_worker()
             answer = worker.answer = loop.create_future()
             # Buffered by the transport: the idle worker reads it at once.
-            worker.writer.write(message)
+            worker.send(message)
             self.running += units
             try:
                 run_deadline = loop.time() + time_limit_s if deadline is None else deadline
@@ -335,7 +404,7 @@ class WorkerPool:
                 worker = self._idle_workers.get_nowait()
             if worker.retired:
                 continue
-            if worker.writer.is_closing() or not worker.process.is_alive():
+            if worker.closing or not worker.process.is_alive():
                 # Dead while idle, and the event loop has not heard yet (say, killed with
                 # the others by the OOM killer): not a failure of the task about to be sent.
                 self._on_death(worker)
@@ -361,12 +430,15 @@ class WorkerPool:
                 process = self._context.Process(
                     target=_worker_main, args=(child,), daemon=True, name="arcspline-worker"
                 )
+                worker = _Worker(process, self._on_death)
                 try:
                     # Quick (the forkserver forks; the child imports on its own time), and
                     # not awaited, so that a cancelled start cannot lose a process.
                     process.start()
-                    reader, writer = await asyncio.open_unix_connection(
-                        sock=ours, limit=_STREAM_LIMIT
+                    # The factory runs within this call, so it sees this iteration's worker.
+                    await asyncio.get_running_loop().create_unix_connection(
+                        lambda: worker,  # noqa: B023
+                        sock=ours,
                     )
                 except BaseException:
                     ours.close()
@@ -375,9 +447,7 @@ class WorkerPool:
                     raise
                 finally:
                     child.close()
-                worker = _Worker(process=process, reader=reader, writer=writer)
                 self._workers.append(worker)
-                self._background_task(self._listen(worker))
                 try:
                     await asyncio.wait_for(asyncio.shield(worker.ready), START_TIMEOUT_S)
                 except (TimeoutError, _WorkerDiedError):
@@ -392,30 +462,11 @@ class WorkerPool:
         finally:
             self._starting -= 1
 
-    async def _listen(self, worker: _Worker) -> None:
-        """Read the worker's messages (frames of ``multiprocessing.Connection``) until EOF."""
-        reader = worker.reader
-        try:
-            while True:
-                (size,) = struct.unpack("!i", await reader.readexactly(4))
-                if size == -1:  # a message of 2 GiB or more
-                    (size,) = struct.unpack("!Q", await reader.readexactly(8))
-                data = await reader.readexactly(size)
-                if not worker.ready.done():
-                    worker.ready.set_result(None)
-                    continue
-                answer = worker.answer
-                if answer is not None and not answer.done():
-                    answer.set_result(pickle.loads(data))
-        except (asyncio.IncompleteReadError, ConnectionError, OSError):
-            # The worker's end of the socket closed: it has died (or was stopped).
-            self._on_death(worker)
-
     def _on_death(self, worker: _Worker) -> None:
         if worker.retired:
             return
         self._retire(worker)
-        worker.writer.close()
+        worker.close()
         if not worker.ready.done():
             worker.ready.set_exception(_WorkerDiedError())
             return
@@ -472,7 +523,7 @@ async def _reap(worker: _Worker) -> None:
     try:
         await asyncio.to_thread(worker.process.join, STOP_TIMEOUT_S)
     finally:
-        worker.writer.close()
+        worker.close()
 
 
 def _frame(payload: bytes) -> bytes:
@@ -493,9 +544,11 @@ def _join_all(processes: list[BaseProcess]) -> None:
 class Coalescer(Generic[Item, Arg, T]):
     """Runs ``fn(items, arg) -> results`` for single items, several items per task under load.
 
-    An item waits in a queue; a dispatcher takes a free worker slot, then everything queued
-    (up to ``max_items``) as one task. With a worker free, an item goes alone and at once;
-    with all busy, the items that pile up meanwhile share the next task. Each item counts as
+    An item waits in a queue; a dispatcher takes a free worker slot, then its share of what
+    is queued (up to ``max_items``) as one task: all of it when no other worker is free,
+    else an even split with the free ones, so that no worker idles while another has a
+    long task. With a worker free, an item goes alone and at once; with all busy, the items
+    that pile up meanwhile share the next task. Each item counts as
     one unit of the pool's capacity. A task of ``k`` items gets ``k × time_limit_s``; if it
     fails (time limit, workers lost twice), each of its items gets that error.
     """
@@ -536,16 +589,17 @@ class Coalescer(Generic[Item, Arg, T]):
         pool = self.pool
         try:
             while self._queue:
-                await pool._slots.acquire()
+                await pool._take_slot()
                 try:
-                    batch = [
-                        self._queue.popleft() for _ in range(min(self._max_items, len(self._queue)))
-                    ]
+                    # Shared with the workers still free, so that none idles while this
+                    # task runs (their dispatchers take the rest).
+                    share = -(-len(self._queue) // (1 + pool.free_slots))
+                    batch = [self._queue.popleft() for _ in range(min(self._max_items, share))]
                     batch = [(item, result) for item, result in batch if not result.done()]
                     if batch:
                         await self._run(batch)
                 finally:
-                    pool._slots.release()
+                    pool._give_slot()
         finally:
             self._dispatchers -= 1
 

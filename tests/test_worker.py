@@ -212,6 +212,23 @@ async def test_jobs_that_queue_up_share_worker_tasks() -> None:
 
 
 @pool_test
+async def test_queued_jobs_are_shared_among_the_free_workers() -> None:
+    pool = WorkerPool(2, 64)
+    await pool.start()
+    try:
+        coalescer = Coalescer(
+            pool, approximate_chunk, DEFAULT_LIMITS, time_limit_s=10, max_items=32
+        )
+        results = await asyncio.gather(*(coalescer.run(Job(PAPER, 1e-3)) for _ in range(20)))
+        assert [r.arc_count for r in results if isinstance(r, Encoded)] == [12] * 20
+        # Both workers are free when the 20 have queued: a task of 10 each, not one of 20.
+        assert coalescer.tasks == 2
+        assert pool.free_slots == pool.size
+    finally:
+        await pool.drain(10)
+
+
+@pool_test
 async def test_a_coalesced_task_that_fails_fails_each_of_its_jobs() -> None:
     pool = WorkerPool(1, 64)
     await pool.start()
