@@ -87,26 +87,11 @@ def build_spiral(spec: SpiralSpec) -> Spiral:
 def encode(spline: ArcSpline, gcode: str | None) -> Encoded | GeometryError:
     """The ``ApproximateResponse`` body of ``spline`` as JSON bytes (an error if not finite).
 
-    Built from the columns' ``tolist()`` (one conversion per column, not per value) and
-    serialised by orjson: no per-segment model objects, which a 1000-spiral batch would
-    otherwise spend most of its time building.
+    Built from the spline's plain values (``ArcSpline.values``: one conversion per column,
+    or none for a spline assembled in floats) and serialised by orjson: no per-segment model
+    objects, which a 1000-spiral batch would otherwise spend most of its time building.
     """
-    c = spline.columns
-    rows = zip(
-        c.is_arc.tolist(),
-        c.start.tolist(),
-        c.end.tolist(),
-        c.center.tolist(),
-        c.radius.tolist(),
-        c.start_angle_rad.tolist(),
-        c.sweep_rad.tolist(),
-        c.length.tolist(),
-        c.u_start.tolist(),
-        c.u_end.tolist(),
-        c.max_deviation.tolist(),
-        c.u_at_max_deviation.tolist(),
-        strict=True,
-    )
+    rows = spline.values()
     segments = [
         {
             "type": "arc",

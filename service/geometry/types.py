@@ -7,6 +7,7 @@ per segment) so that a batch of thousands of spirals never builds a Python objec
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import ClassVar, Literal, NamedTuple
 
@@ -67,6 +68,29 @@ class LineSegment:
 Segment = ArcSegment | LineSegment
 
 
+#: One segment's fields as plain Python values, in the order of :class:`SegmentColumns`' fields
+#: (``is_arc``, ``start``, ``end``, ``center``, ``radius``, ``start_angle_rad``, ``sweep_rad``,
+#: ``length``, ``u_start``, ``u_end``, ``max_deviation``, ``u_at_max_deviation``; points as
+#: ``[x, y]`` lists): what a JSON encoder takes as it is, with no numpy scalar or per-segment
+#: object in between. A plain tuple, not a named one: a batch makes thousands, and a named
+#: tuple costs several times as much to make. The lists belong to the spline: read them, do
+#: not change them.
+SegmentValues = tuple[
+    bool,
+    list[float],
+    list[float],
+    list[float],
+    float,
+    float,
+    float,
+    float,
+    float,
+    float,
+    float,
+    float,
+]
+
+
 @dataclass(frozen=True, slots=True)
 class SegmentColumns:
     """The segments of one arc spline (or of a whole batch), one row per segment.
@@ -90,6 +114,35 @@ class SegmentColumns:
 
     def __len__(self) -> int:
         return int(self.is_arc.shape[0])
+
+    @classmethod
+    def from_values(cls, values: Sequence[SegmentValues]) -> SegmentColumns:
+        """The columns of these rows (the inverse of :meth:`values`)."""
+        if not values:
+            points = (np.empty((0, 2)) for _ in range(3))
+            return cls(np.empty(0, dtype=bool), *points, *(np.empty(0) for _ in range(8)))
+        c = list(zip(*values, strict=True))
+        return cls(np.array(c[0], dtype=bool), *map(np.array, c[1:]))
+
+    def values(self) -> list[SegmentValues]:
+        """Every row as plain Python values: one ``tolist`` per column, not per value."""
+        return list(
+            zip(
+                self.is_arc.tolist(),
+                self.start.tolist(),
+                self.end.tolist(),
+                self.center.tolist(),
+                self.radius.tolist(),
+                self.start_angle_rad.tolist(),
+                self.sweep_rad.tolist(),
+                self.length.tolist(),
+                self.u_start.tolist(),
+                self.u_end.tolist(),
+                self.max_deviation.tolist(),
+                self.u_at_max_deviation.tolist(),
+                strict=True,
+            )
+        )
 
     def rows(self, begin: int, end: int) -> SegmentColumns:
         """Rows ``begin:end`` as views (no copy)."""
@@ -170,27 +223,41 @@ class ArcSpline:
 
     Immutable: its attributes are read-only properties. The splines of a batch share the
     batch's columns: ``columns`` are views of this spline's rows, made on first use, so a
-    batch of thousands makes no per-spline arrays that nobody reads.
+    batch of thousands makes no per-spline arrays that nobody reads. A spline assembled in
+    floats holds plain ``SegmentValues`` instead, and makes its columns on first use.
     """
 
-    __slots__ = ("_batch", "_begin", "_columns", "_end", "_stats", "_strategy", "_tolerance")
+    __slots__ = (
+        "_batch",
+        "_begin",
+        "_columns",
+        "_end",
+        "_stats",
+        "_strategy",
+        "_tolerance",
+        "_values",
+    )
 
     def __init__(
         self,
-        columns: SegmentColumns,
+        columns: SegmentColumns | list[SegmentValues],
         stats: SplineStats,
         tolerance: float,
         strategy: str,
         rows: tuple[int, int] | None = None,
     ) -> None:
-        """The spline of ``columns``, or of ``columns``' rows ``rows = (begin, end)``."""
-        self._batch = columns
-        if rows is None:
-            self._begin, self._end = 0, len(columns)
-            self._columns: SegmentColumns | None = columns
+        """The spline of ``columns`` (or of its rows ``rows = (begin, end)``), or of rows of
+        plain values."""
+        self._columns: SegmentColumns | None = None
+        self._values: list[SegmentValues] | None = None
+        self._batch: SegmentColumns | None = None
+        if isinstance(columns, list):
+            self._values = columns
+        elif rows is None:
+            self._batch = self._columns = columns
         else:
-            self._begin, self._end = rows
-            self._columns = None
+            self._batch = columns
+        self._begin, self._end = (0, len(columns)) if rows is None else rows
         self._stats = stats
         self._tolerance = tolerance
         self._strategy = strategy
@@ -198,8 +265,18 @@ class ArcSpline:
     @property
     def columns(self) -> SegmentColumns:
         if self._columns is None:
-            self._columns = self._batch.rows(self._begin, self._end)
+            if self._batch is None:
+                assert self._values is not None
+                self._columns = SegmentColumns.from_values(self._values)
+            else:
+                self._columns = self._batch.rows(self._begin, self._end)
         return self._columns
+
+    def values(self) -> list[SegmentValues]:
+        """The segments as plain Python values (``SegmentValues``), in order."""
+        if self._values is None:
+            self._values = self.columns.values()
+        return self._values
 
     @property
     def stats(self) -> SplineStats:

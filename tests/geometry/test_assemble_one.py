@@ -6,13 +6,14 @@ from __future__ import annotations
 import numpy as np
 import pytest
 from hypothesis import assume, given
+from hypothesis import strategies as st
 
 from service.geometry import Spiral, canonical, min_tolerance
 from service.geometry.approximate import PLACEMENT_SCREEN_ULPS
 from service.geometry.assemble import Frames, segment_columns, spiral_lengths, splines
-from service.geometry.assemble_one import MAX_BIARCS, assemble_one
+from service.geometry.assemble_one import MAX_BIARCS, assemble_one, numpy_sum
 from service.geometry.subdivide_one import kept, subdivide_one
-from service.geometry.types import ArcSpline
+from service.geometry.types import ArcSpline, SegmentColumns
 from tests.geometry.test_properties import PROPERTY, relative_tolerances, spirals
 
 
@@ -53,6 +54,8 @@ def _assert_identical(batch: ArcSpline, one: ArcSpline | None) -> None:
         assert a.tobytes() == b.tobytes(), name
     assert one.stats == batch.stats
     assert (one.tolerance, one.strategy) == (batch.tolerance, batch.strategy)
+    # The plain values the float assembly keeps are those the batch's columns give.
+    assert one.values() == batch.values()
 
 
 PAPER = Spiral.from_parameters((1.5, 3.0), (1.0, 0.0), 51.34, 0.41574)
@@ -117,3 +120,39 @@ def test_an_arc_whose_placement_needs_measuring_is_left_to_the_batch_assembly() 
     batch, one = _both(far, tolerance)
     assert _screened(batch, tolerance)
     assert one is None
+
+
+@given(
+    st.lists(
+        st.floats(min_value=0.0, max_value=1e6, allow_subnormal=False)
+        | st.floats(min_value=-1e-3, max_value=1e-3),
+        min_size=1,
+        max_size=300,
+    )
+)
+def test_numpy_sum_adds_as_numpy_s_reduceat(values: list[float]) -> None:
+    array = np.array(values)
+    expected = float(np.add.reduceat(array, np.zeros(1, dtype=np.intp))[0])
+    assert numpy_sum(values) == expected
+
+
+def test_columns_and_values_convert_both_ways() -> None:
+    batch, _ = _both(PAPER, 1e-3)
+    first = batch.values()[0]
+    line = (False, *first[1:4], float("inf"), first[5], 0.0, *first[7:])
+    values = [line, *batch.values()[1:]]
+    columns = SegmentColumns.from_values(values)
+    assert columns.values() == values
+    assert columns.is_arc.dtype == np.bool_
+    assert columns.start.shape == (len(values), 2)
+    empty = SegmentColumns.from_values([])
+    assert empty.center.shape == (0, 2)
+    assert empty.values() == []
+
+
+def test_numpy_sum_adds_as_numpy_s_reduceat_at_every_length() -> None:
+    rng = np.random.default_rng(7)
+    for n in range(1, 301):  # past the pairwise block of 128, where numpy halves
+        array = rng.uniform(0.0, 1.0, n) * 10.0 ** rng.uniform(-8.0, 3.0, n)
+        expected = float(np.add.reduceat(array, np.zeros(1, dtype=np.intp))[0])
+        assert numpy_sum(array.tolist()) == expected, n
