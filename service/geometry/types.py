@@ -274,9 +274,11 @@ class ArcSpline:
 
     def values(self) -> list[SegmentValues]:
         """The segments as plain Python values (``SegmentValues``), in order."""
-        if self._values is None:
-            self._values = self.columns.values()
-        return self._values
+        if self._values is not None:
+            return self._values
+        # Not kept: a batch's splines would hold millions of Python objects for the
+        # collector to walk, where the encoder needs each list once.
+        return self.columns.values()
 
     @property
     def stats(self) -> SplineStats:
