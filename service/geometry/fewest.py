@@ -32,11 +32,12 @@ single spiral's step) are proven one arc at a time in floats, in order, stopping
 proven one (:mod:`service.geometry.fewest_exact_one`, the same numbers as the array proof).
 
 **Newton's step.** Far from the spiral's end (the previous span fits ``NEWTON_REACH`` more
-times), a step first tries :func:`_newton_many`: Newton's method on ``(log(u1 − u0), λ)``
-for the biarc whose two arcs both deviate by just under the tolerance, each iterate measured
-exactly by the same proof, with Broyden's update of a Jacobian carried along the walk — two
-exact evaluations a step on the paper's example at 1e-5, against three screening grids and a
-proof. A row it leaves (no proven iterate near the tolerance) takes the grids above.
+times), a step first tries :mod:`service.geometry.fewest_newton`: Newton's method on
+``(log(u1 − u0), λ)`` for the biarc whose two arcs both deviate by just under the tolerance,
+each iterate measured exactly by the same proof, with Broyden's update of a Jacobian carried
+along the walk — two exact evaluations a step on the paper's example at 1e-5, against three
+screening grids and a proof; one spiral's step runs in floats. A row it leaves (no proven
+iterate near the tolerance) takes the grids above.
 
 **Tail merge.** Greedy longest pieces leave a short last biarc; the last two biarcs are then
 replaced by three arcs whose first joint lies off the spiral, when such a "triarc" is proven
@@ -61,13 +62,9 @@ import numpy.typing as npt
 from . import canonical
 from .assemble import FLAT_SWEEP_RAD, Frames, splines
 from .errors import GeometryError
-from .fewest_exact import (
-    arc_deviation,
-    joint_split,
-    one_arc_deviation,
-    screen_radial,
-    split_guess,
-)
+from .fewest_biarc import LAMBDA_MARGIN, SabinBiarcs, sabin_biarcs, verify
+from .fewest_exact import one_arc_deviation, screen_radial
+from .fewest_newton import NEWTON_JACOBIAN, Devs, newton_step
 from .fewest_tail import Triarc, best_triarcs
 from .spiral import Spiral
 from .types import ArcSpline, BoolArray, FloatArray, SegmentColumns
@@ -97,7 +94,6 @@ HINT_LAMBDAS = 7
 REFINE_ROUNDS = 2
 REFINE = 5
 REFINE_LAMBDAS = 5
-LAMBDA_MARGIN = 1e-3
 #: The pieces proven where neither the interpolated crossing nor the longest screened fit
 #: is: these fractions of the longest screened span.
 LADDER = np.array([0.998, 0.994, 0.985, 0.96, 0.9])
@@ -109,26 +105,9 @@ PROVE_IN_FLOATS = 8
 #: Screening aims at these fractions of the tolerance, in turn, until a candidate is proven.
 SCREEN_FACTORS = (0.999, 0.99, 0.95, 0.8, 0.5)
 
-#: The Newton step (see :func:`_newton_many`): both arcs aim at this fraction of the tolerance;
-#: a proven biarc whose larger deviation reaches ``NEWTON_ACCEPT`` of it ends the iteration;
-#: after ``NEWTON_ITERATIONS`` the longest proven one is kept if it reaches ``NEWTON_FLOOR``,
-#: else the row is searched by the grids.
-NEWTON_TARGET = 0.995
-NEWTON_ACCEPT = 0.97
-NEWTON_FLOOR = 0.9
-NEWTON_ITERATIONS = 6
-#: Largest Newton step in ``log(span)`` and in ``λ``.
-NEWTON_MAX_LOG_STEP = 0.5
-NEWTON_MAX_LAMBDA_STEP = 0.1
 #: Rows whose previous span fits this many times more before the spiral's end take the Newton
 #: step (the first steps, where its Jacobian is still rough, pay off over those that follow).
 NEWTON_REACH = 4.0
-#: The first Jacobian of the residuals ``log(dev_i / target)`` in ``(log span, λ)``: a
-#: deviation grows about as the span cubed, and ``λ`` moves deviation from one arc to the
-#: other. (Measured by finite differences on the paper's example and 200 random spirals:
-#: 2.3–3.3, 11.9–13.5, 2.8–3.7, −12.1…−10.7.) Broyden's update refines it.
-NEWTON_JACOBIAN = ((3.0, 12.5), (3.2, -11.5))
-
 _SAMPLE_T = (np.arange(SAMPLES) + 0.5) / SAMPLES
 _COARSE_T = (np.arange(COARSE_SAMPLES) + 0.5) / COARSE_SAMPLES
 _LAMBDA_GRID = (np.arange(LAMBDAS) + 0.5) / LAMBDAS
@@ -158,80 +137,6 @@ class Chain:
     s: FloatArray
     dev: FloatArray
     u_dev: FloatArray
-
-
-@dataclass(frozen=True, slots=True)
-class _Biarcs:
-    """Candidate biarcs from ``A0 = Q(u0)`` (shared) to ``Q(u1)``, one per element."""
-
-    u1: FloatArray
-    lam: FloatArray
-    phi0: FloatArray
-    psi: FloatArray
-    phi1: FloatArray
-    kappa0: FloatArray
-    kappa1: FloatArray
-    gx: FloatArray
-    gy: FloatArray
-    split: FloatArray
-    ok: BoolArray
-
-
-def _biarcs(
-    k: FloatArray,
-    m: FloatArray,
-    u0: FloatArray,
-    u1: FloatArray,
-    lam: FloatArray,
-    exact: bool = True,
-) -> _Biarcs:
-    """Sabin's-circle biarcs; ``exact=False`` (screening) finds the joint's split parameter
-    by a few plain Newton steps instead of the bracketed iteration. The arguments broadcast
-    together (``exact`` needs them all of one shape)."""
-    ax, ay = canonical.point(k, m, u0)
-    dx, dy = canonical.offset(k, m, u0, u1)
-    phi0 = canonical.direction_rad(k, m, u0 * u0)
-    phi1 = canonical.direction_rad(k, m, u1 * u1)
-    chi = np.arctan2(dy, dx)
-    alpha, beta = chi - phi0, phi1 - chi
-    psi = chi - beta + lam * (alpha + beta)
-    h0, h1 = 0.5 * (phi0 + psi), 0.5 * (psi + phi1)
-    den = np.sin(0.5 * (phi1 - phi0))
-    c0, s0, c1, s1 = np.cos(h0), np.sin(h0), np.cos(h1), np.sin(h1)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        len0 = (dx * s1 - dy * c1) / den
-        len1 = (c0 * dy - s0 * dx) / den
-        kappa0 = 2.0 * np.sin(0.5 * (psi - phi0)) / len0
-        kappa1 = 2.0 * np.sin(0.5 * (phi1 - psi)) / len1
-    gx, gy = ax + len0 * c0, ay + len0 * s0
-    ok = (len0 > 0.0) & (len1 > 0.0) & np.isfinite(kappa0) & np.isfinite(kappa1)
-    split = joint_split(k, m, gx, gy, psi) if exact else split_guess(k, m, gx, gy, psi, u0, u1)
-    ok &= (split > u0) & (split < u1)
-    return _Biarcs(u1, lam, phi0, psi, phi1, kappa0, kappa1, gx, gy, split, ok)
-
-
-def _verify(
-    k: FloatArray, m: FloatArray, u0: FloatArray, b: _Biarcs, tol: FloatArray
-) -> tuple[FloatArray, ...]:
-    """Exact deviations of both arcs of each candidate: ``(dev0, u0_at, dev1, u1_at)``."""
-    n = b.u1.shape[0]
-    ax, ay = canonical.point(k, m, u0)
-    bx, by = canonical.point(k, m, b.u1)
-    d = arc_deviation(
-        np.concatenate([k, k]),
-        np.concatenate([m, m]),
-        np.concatenate([ax, b.gx]),
-        np.concatenate([ay, b.gy]),
-        np.concatenate([b.phi0, b.psi]),
-        np.concatenate([b.kappa0, b.kappa1]),
-        np.concatenate([b.gx, bx]),
-        np.concatenate([b.gy, by]),
-        np.concatenate([u0, b.split]),
-        np.concatenate([b.split, b.u1]),
-        np.concatenate([tol, tol]),
-    )
-    value = np.where(np.concatenate([b.ok, b.ok]), d.value, np.inf)
-    return value[:n], d.u[:n], value[n:], d.u[n:]
 
 
 def _splice(chain: Chain, t: Triarc, dev: FloatArray, u_dev: FloatArray) -> Chain:
@@ -369,13 +274,13 @@ def _evaluate(
     # Broadcast (rows, u1, λ): what depends on u1 alone is computed once per grid value.
     col = (slice(None), None, None)
     with np.errstate(invalid="ignore", divide="ignore"):
-        b = _biarcs(k[col], m[col], u0[col], grid[:, :, None], lams[:, None, :], exact=False)
+        b = sabin_biarcs(k[col], m[col], u0[col], grid[:, :, None], lams[:, None, :], exact=False)
         dev = _screen_grid(k, m, u0, b, samples)
     return _Round(grid, lams, dev, dev <= screen_tol[:, None, None])
 
 
 def _screen_grid(
-    k: FloatArray, m: FloatArray, u0: FloatArray, b: _Biarcs, samples: FloatArray
+    k: FloatArray, m: FloatArray, u0: FloatArray, b: SabinBiarcs, samples: FloatArray
 ) -> FloatArray:
     """Largest sampled radial distance of each candidate biarc (a lower bound on its
     deviation), inf if invalid; candidates broadcast over ``(rows, u1, λ)``, samples on a
@@ -438,7 +343,7 @@ def _search_many(
     screen_tol: FloatArray,
     hint: FloatArray,
     lam_hint: FloatArray,
-) -> tuple[BoolArray, _Biarcs, tuple[FloatArray, ...]]:
+) -> tuple[BoolArray, SabinBiarcs, tuple[FloatArray, ...]]:
     """From each row's ``u0`` (own spiral, tolerance, previous span ``hint`` and join parameter
     ``lam_hint``), the verified biarc reaching the largest ``u1`` found: a first grid around
     the hints (or a geometric grid over ``(u0, 1]`` and all ``λ``), refining rounds, then the
@@ -562,7 +467,7 @@ def _search_many(
         more_u = u0[redo, None] + (u_top - u0)[redo, None] * LADDER[None, 1:]
         f2, c2, d2 = _prove(k[redo], m[redo], u0[redo], tol[redo], more_u, lam_top[redo], has[redo])
         found[redo] = f2
-        for name in _Biarcs.__slots__:
+        for name in SabinBiarcs.__slots__:
             np.asarray(getattr(chosen, name))[redo] = getattr(c2, name)
         for mine, theirs in zip(devs, d2, strict=True):
             mine[redo] = theirs
@@ -577,7 +482,7 @@ def _prove(
     cand_u: FloatArray,
     lam_top: FloatArray,
     has: BoolArray,
-) -> tuple[BoolArray, _Biarcs, tuple[FloatArray, ...]]:
+) -> tuple[BoolArray, SabinBiarcs, tuple[FloatArray, ...]]:
     """Per row the first of the piece ends ``cand_u`` (rows, rungs) whose biarc with join
     parameter ``lam_top`` is proven within ``tol``."""
     n, rep = cand_u.shape
@@ -586,15 +491,15 @@ def _prove(
     kk, mm, u00, tt = (np.repeat(v, rep) for v in (k, m, u0, tol))
     uu = np.where(cand_ok, cand_u, 1.0).ravel()
     with np.errstate(invalid="ignore", divide="ignore"):
-        b = _biarcs(kk, mm, u00, uu, cand_l.ravel())
+        b = sabin_biarcs(kk, mm, u00, uu, cand_l.ravel())
         usable = cand_ok.ravel() & b.ok
         if n * rep <= PROVE_IN_FLOATS:
             d0, w0, d1, w1 = _verify_lazily(kk, mm, u00, b, tt, usable.reshape(n, rep))
         else:
-            d0, w0, d1, w1 = _verify(kk, mm, u00, b, tt)
+            d0, w0, d1, w1 = verify(kk, mm, u00, b, tt)
     good = ((d0 <= tt) & (d1 <= tt) & usable).reshape(n, rep)
     pick = np.arange(n) * rep + np.argmax(good, axis=1)
-    chosen = _Biarcs(*(np.asarray(getattr(b, f))[pick] for f in _Biarcs.__slots__))
+    chosen = SabinBiarcs(*(np.asarray(getattr(b, f))[pick] for f in SabinBiarcs.__slots__))
     found: BoolArray = np.asarray(good.any(axis=1))
     # Rows without a proven rung have no deviations (the lazy proof does not measure them all).
     devs = tuple(np.where(found, d[pick], np.nan) for d in (d0, w0, d1, w1))
@@ -602,12 +507,12 @@ def _prove(
 
 
 def _verify_lazily(
-    k: FloatArray, m: FloatArray, u0: FloatArray, b: _Biarcs, tol: FloatArray, usable: BoolArray
+    k: FloatArray, m: FloatArray, u0: FloatArray, b: SabinBiarcs, tol: FloatArray, usable: BoolArray
 ) -> tuple[FloatArray, ...]:
-    """:func:`_verify` of a few candidates (rows × rungs), one arc at a time in floats, in
-    order, stopping at each row's first proven rung: the rungs after it, and the second arc
-    of a rung whose first arc fails, stay unmeasured (NaN, never proven). Where measured, the
-    numbers are those of :func:`_verify`."""
+    """``verify`` of a few candidates (rows × rungs), one arc at a time in floats, in order,
+    stopping at each row's first proven rung: the rungs after it, and the second arc of a rung
+    whose first arc fails, stay unmeasured (NaN, never proven). Where measured, the numbers
+    are those of ``verify``."""
     d0, w0, d1, w1 = (np.full(b.u1.shape[0], np.nan) for _ in range(4))
     ax, ay = canonical.point(k, m, u0)
     bx, by = canonical.point(k, m, b.u1)
@@ -637,121 +542,6 @@ def _verify_lazily(
     return d0, w0, d1, w1
 
 
-Devs = tuple[FloatArray, ...]
-
-
-def _equations(
-    k: FloatArray,
-    m: FloatArray,
-    u0: FloatArray,
-    tol: FloatArray,
-    log_span: FloatArray,
-    lam: FloatArray,
-) -> tuple[_Biarcs, Devs, FloatArray, FloatArray]:
-    """The biarcs of each row at ``(log(u1 − u0), λ)``, their exact deviations (as
-    :func:`_verify`), and the residuals ``log(dev / (NEWTON_TARGET·tol))`` of both arcs
-    (non-finite where the biarc is invalid)."""
-    u1 = u0 + np.exp(log_span)
-    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-        b = _biarcs(k, m, u0, u1, lam)
-        devs = _verify(k, m, u0, b, tol)
-        aim = NEWTON_TARGET * tol
-        f0, f1 = np.log(devs[0] / aim), np.log(devs[2] / aim)
-    return b, devs, f0, f1
-
-
-def _broyden(
-    jac: FloatArray,
-    rows: npt.NDArray[np.intp],
-    s0: FloatArray,
-    s1: FloatArray,
-    df0: FloatArray,
-    df1: FloatArray,
-) -> None:
-    """Broyden's update of ``jac[rows]`` in place after the step ``(s0, s1)`` changed the
-    residuals by ``(df0, df1)``: ``J += (Δf − J·Δx)·Δxᵀ / (Δx·Δx)`` (C.G. Broyden, *A class
-    of methods for solving nonlinear simultaneous equations*, Math. Comp. 19 (1965), the
-    "good" update), where both changes are finite."""
-    with np.errstate(invalid="ignore"):
-        r0 = df0 - (jac[rows, 0, 0] * s0 + jac[rows, 0, 1] * s1)
-        r1 = df1 - (jac[rows, 1, 0] * s0 + jac[rows, 1, 1] * s1)
-        norm2 = s0 * s0 + s1 * s1
-    usable = np.isfinite(r0) & np.isfinite(r1) & (norm2 > 0.0)
-    up, r0, r1, s0, s1, norm2 = (v[usable] for v in (rows, r0, r1, s0, s1, norm2))
-    jac[up, 0, 0] += r0 * s0 / norm2
-    jac[up, 0, 1] += r0 * s1 / norm2
-    jac[up, 1, 0] += r1 * s0 / norm2
-    jac[up, 1, 1] += r1 * s1 / norm2
-
-
-def _newton_many(
-    k: FloatArray,
-    m: FloatArray,
-    u0: FloatArray,
-    tol: FloatArray,
-    hint: FloatArray,
-    lam_hint: FloatArray,
-    jacobian: FloatArray,
-) -> tuple[BoolArray, _Biarcs, Devs, FloatArray]:
-    """From each row's ``u0``, the biarc whose two arcs both deviate by ``NEWTON_TARGET·tol``,
-    by Newton's method on ``x = (log(u1 − u0), λ)`` from the previous piece (span ``hint``,
-    join parameter ``lam_hint``), with Broyden's update of the Jacobian ``jacobian`` (rows,
-    2, 2; first ``NEWTON_JACOBIAN``), which the walk carries from step to step.
-
-    Why it works: between the join parameters where each arc's deviation is least, the first
-    arc's deviation grows with ``λ`` and the second's shrinks, so the longest biarc within
-    the tolerance is where both reach it — two smooth equations — and along a spiral the
-    solution and its Jacobian change slowly (about two exact evaluations per step on the
-    paper's example at 1e-5). Every iterate is measured exactly (:func:`_verify`), so the
-    longest proven one is kept; a row is left to the grids (``found`` false) when no proven
-    iterate reaches ``NEWTON_FLOOR`` of the tolerance, an iterate is invalid, or a step would
-    pass the spiral's end. Returns ``found``, the biarcs, their deviations and the updated
-    Jacobians."""
-    n = k.size
-    x0, x1 = np.log(hint), lam_hint.copy()
-    jac = jacobian.copy()
-    b, devs, f0, f1 = _equations(k, m, u0, tol, x0, x1)
-    chosen = _Biarcs(*(np.array(getattr(b, f)) for f in _Biarcs.__slots__))
-    best = tuple(np.full(n, np.nan) for _ in range(4))
-    best_u1 = np.full(n, -np.inf)
-    active = np.ones(n, dtype=bool)
-    for iteration in range(NEWTON_ITERATIONS):
-        proven = active & b.ok & (devs[0] <= tol) & (devs[2] <= tol)
-        better = np.flatnonzero(proven & (b.u1 > best_u1))
-        for name in _Biarcs.__slots__:
-            np.asarray(getattr(chosen, name))[better] = np.asarray(getattr(b, name))[better]
-        for mine, theirs in zip(best, devs, strict=True):
-            mine[better] = theirs[better]
-        best_u1[better] = b.u1[better]
-        worst = np.maximum(devs[0], devs[2])
-        active &= ~(proven & (worst >= NEWTON_ACCEPT * tol)) & np.isfinite(f0) & np.isfinite(f1)
-        if iteration == NEWTON_ITERATIONS - 1:
-            break
-        with np.errstate(invalid="ignore", divide="ignore"):
-            det = jac[:, 0, 0] * jac[:, 1, 1] - jac[:, 0, 1] * jac[:, 1, 0]
-            s0 = -(jac[:, 1, 1] * f0 - jac[:, 0, 1] * f1) / det
-            s1 = -(jac[:, 0, 0] * f1 - jac[:, 1, 0] * f0) / det
-        s0 = np.clip(s0, -NEWTON_MAX_LOG_STEP, NEWTON_MAX_LOG_STEP)
-        s1 = np.clip(s1, -NEWTON_MAX_LAMBDA_STEP, NEWTON_MAX_LAMBDA_STEP)
-        with np.errstate(over="ignore"):
-            inside = u0 + np.exp(x0 + s0) < 1.0
-        active &= np.isfinite(s0) & np.isfinite(s1) & inside
-        rows = np.flatnonzero(active)
-        if rows.size == 0:
-            break
-        s0, s1 = s0[rows], s1[rows]
-        x0[rows], x1[rows] = x0[rows] + s0, np.clip(x1[rows] + s1, LAMBDA_MARGIN, 1 - LAMBDA_MARGIN)
-        nb, nd, g0, g1 = _equations(k[rows], m[rows], u0[rows], tol[rows], x0[rows], x1[rows])
-        _broyden(jac, rows, s0, s1, g0 - f0[rows], g1 - f1[rows])
-        for name in _Biarcs.__slots__:
-            np.asarray(getattr(b, name))[rows] = getattr(nb, name)
-        for mine, theirs in zip(devs, nd, strict=True):
-            mine[rows] = theirs
-        f0[rows], f1[rows] = g0, g1
-    found = np.isfinite(best_u1) & (np.maximum(best[0], best[2]) >= NEWTON_FLOOR * tol)
-    return found, chosen, best, jac
-
-
 def fewest_chains(
     k: FloatArray, m: FloatArray, tol: FloatArray, max_arcs: npt.NDArray[np.intp]
 ) -> list[Chain | None]:
@@ -759,7 +549,7 @@ def fewest_chains(
 
     The walk runs in lockstep over the batch; a spiral's chain is None where it fails or
     would need more than ``max_arcs`` arcs. A step whose previous span fits ``NEWTON_REACH``
-    more times before the end tries :func:`_newton_many` from that piece first; the grids of
+    more times before the end tries ``newton_step`` from that piece first; the grids of
     :func:`_search_many` take the first step, the pieces near the end and any row the Newton
     step leaves."""
     n = k.size
@@ -768,7 +558,7 @@ def fewest_chains(
     u0, hint, lam_hint = np.zeros(n), np.zeros(n), np.full(n, 0.5)
     jacobian = np.tile(np.array(NEWTON_JACOBIAN), (n, 1, 1))
 
-    def record(rows: npt.NDArray[np.intp], found: BoolArray, b: _Biarcs, devs: Devs) -> None:
+    def record(rows: npt.NDArray[np.intp], found: BoolArray, b: SabinBiarcs, devs: Devs) -> None:
         d0, w0, d1, w1 = devs
         for j in np.flatnonzero(found).tolist():
             r = int(rows[j])
@@ -793,7 +583,7 @@ def fewest_chains(
         far = u0[pending] + hint[pending] * NEWTON_REACH < 1.0
         newton = pending[(hint[pending] > 0.0) & far]
         if newton.size:
-            found, b, devs, jacobian[newton] = _newton_many(
+            found, b, devs, jacobian[newton] = newton_step(
                 k[newton],
                 m[newton],
                 u0[newton],

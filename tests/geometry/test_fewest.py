@@ -218,18 +218,18 @@ def test_newton_steps_are_proven_and_reach_the_tolerance(monkeypatch: pytest.Mon
     # Every arc of the chain, measured here from scratch (radial distance of 4000 samples of
     # its spiral piece to its circle), is within the tolerance; the pieces that Newton's step
     # found reach at least NEWTON_FLOOR of it, and it found most of them.
-    from service.geometry import fewest
+    from service.geometry import fewest, fewest_newton
 
     k, m, tol = _paper_canonical(1e-5)
     newton_ends: list[float] = []
-    real = fewest._newton_many
+    real = fewest.newton_step
 
     def spy(*args):  # type: ignore[no-untyped-def]
         found, b, devs, jac = real(*args)
         newton_ends.extend(b.u1[found].tolist())
         return found, b, devs, jac
 
-    monkeypatch.setattr(fewest, "_newton_many", spy)
+    monkeypatch.setattr(fewest, "newton_step", spy)
     (chain,) = fewest.fewest_chains(k, m, tol, np.array([100]))
     assert chain is not None
     kk, mm, t = float(k[0]), float(m[0]), float(tol[0])
@@ -246,20 +246,20 @@ def test_newton_steps_are_proven_and_reach_the_tolerance(monkeypatch: pytest.Mon
     ends = chain.s[2::2]  # each biarc ends at every second split parameter
     for u1 in newton_ends:
         (i,) = np.flatnonzero(ends == u1)
-        assert max(worst[2 * i], worst[2 * i + 1]) >= fewest.NEWTON_FLOOR * t * (1 - 1e-4)
+        assert max(worst[2 * i], worst[2 * i + 1]) >= fewest_newton.NEWTON_FLOOR * t * (1 - 1e-4)
 
 
 def test_a_newton_miss_leaves_the_grid_search_its_row(monkeypatch: pytest.MonkeyPatch) -> None:
     # With the floor out of reach the Newton step finds nothing: every chain must then be the
     # chain of the grids alone (no state of the failed iteration leaks into the walk).
-    from service.geometry import fewest
+    from service.geometry import fewest, fewest_newton
 
     spirals_tol = [_paper_canonical(t) for t in (1e-4, 1e-5)]
     k = np.concatenate([s[0] for s in spirals_tol])
     m = np.concatenate([s[1] for s in spirals_tol])
     tol = np.concatenate([s[2] for s in spirals_tol])
     limit = np.array([100, 100])
-    monkeypatch.setattr(fewest, "NEWTON_FLOOR", 2.0)
+    monkeypatch.setattr(fewest_newton, "NEWTON_FLOOR", 2.0)
     missed = fewest.fewest_chains(k, m, tol, limit)
     monkeypatch.setattr(fewest, "NEWTON_REACH", 1e9)
     grids = fewest.fewest_chains(k, m, tol, limit)
