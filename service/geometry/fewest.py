@@ -42,7 +42,7 @@ iterate near the tolerance) takes the grids above.
 **Tail merge.** Greedy longest pieces leave a short last biarc; the last two biarcs are then
 replaced by three arcs whose first joint lies off the spiral, when such a "triarc" is proven
 within the tolerance (:mod:`service.geometry.fewest_tail`). This is what makes odd counts
-possible (the paper's example: 2/3/7/15/32 segments at 0.1 … 1e-5, against 4/8/12/26/54).
+possible (the paper's example: 2/3/7/15/31 segments at 0.1 … 1e-5, against 4/8/12/26/54).
 
 **Batches.** :func:`fewest_chains` walks all spirals of a batch in lockstep: every greedy step
 of every spiral is one set of numpy operations, as in :mod:`service.geometry.subdivide`.
@@ -62,7 +62,14 @@ import numpy.typing as npt
 from . import canonical
 from .assemble import FLAT_SWEEP_RAD, Frames, splines
 from .errors import GeometryError
-from .fewest_biarc import LAMBDA_MARGIN, SabinBiarcs, sabin_biarcs, verify
+from .fewest_biarc import (
+    LAMBDA_MARGIN,
+    SabinBiarcs,
+    sabin_biarc_one,
+    sabin_biarcs,
+    verify,
+    verify_one,
+)
 from .fewest_exact import one_arc_deviation, screen_radial
 from .fewest_newton import NEWTON_JACOBIAN, Devs, newton_step
 from .fewest_tail import Triarc, best_triarcs
@@ -106,8 +113,10 @@ PROVE_IN_FLOATS = 8
 SCREEN_FACTORS = (0.999, 0.99, 0.95, 0.8, 0.5)
 
 #: Rows whose previous span fits this many times more before the spiral's end take the Newton
-#: step (the first steps, where its Jacobian is still rough, pay off over those that follow).
-NEWTON_REACH = 4.0
+#: step first; nearer the end its iterates tend to pass the end and the grids decide. (With
+#: one spiral's Newton step in floats, 2 beats 4 on the paper's example: 1e-3 5.9 -> 4.4 ms,
+#: 1e-5 10.9 -> 8.8 ms and 32 -> 31 arcs; 1 and 1.5 gain nothing more.)
+NEWTON_REACH = 2.0
 _SAMPLE_T = (np.arange(SAMPLES) + 0.5) / SAMPLES
 _COARSE_T = (np.arange(COARSE_SAMPLES) + 0.5) / COARSE_SAMPLES
 _LAMBDA_GRID = (np.arange(LAMBDAS) + 0.5) / LAMBDAS
@@ -486,6 +495,9 @@ def _prove(
     """Per row the first of the piece ends ``cand_u`` (rows, rungs) whose biarc with join
     parameter ``lam_top`` is proven within ``tol``."""
     n, rep = cand_u.shape
+    if n == 1 and rep <= PROVE_IN_FLOATS:
+        return _prove_one(float(k[0]), float(m[0]), float(u0[0]), float(tol[0]),
+                          cand_u[0].tolist(), float(lam_top[0]), bool(has[0]))  # fmt: skip
     cand_l = np.repeat(lam_top[:, None], rep, axis=1)
     cand_ok = np.repeat(has[:, None], rep, axis=1)
     kk, mm, u00, tt = (np.repeat(v, rep) for v in (k, m, u0, tol))
@@ -504,6 +516,27 @@ def _prove(
     # Rows without a proven rung have no deviations (the lazy proof does not measure them all).
     devs = tuple(np.where(found, d[pick], np.nan) for d in (d0, w0, d1, w1))
     return found, chosen, devs
+
+
+def _prove_one(
+    k: float, m: float, u0: float, tol: float, cand_u: list[float], lam: float, has: bool
+) -> tuple[BoolArray, SabinBiarcs, tuple[FloatArray, ...]]:
+    """:func:`_prove` of one row in floats: each rung's biarc is built only when the rungs
+    before it have failed (:func:`_verify_lazily`'s order), the same numbers."""
+    first = None
+    for u1 in cand_u if has else ():
+        b = sabin_biarc_one(k, m, u0, u1, lam)
+        first = first or b
+        if not b.ok:
+            continue
+        d0, w0, d1, w1 = verify_one(k, m, u0, b, tol, lazily=True)
+        if d0 <= tol and d1 <= tol:
+            chosen = SabinBiarcs(*(np.array([v]) for v in b[: len(SabinBiarcs.__slots__)]))
+            return np.array([True]), chosen, tuple(np.array([d]) for d in (d0, w0, d1, w1))
+    # No rung proven: the row's biarc and deviations mean nothing (as for the arrays).
+    b = first or sabin_biarc_one(k, m, u0, 1.0, lam)
+    nothing = SabinBiarcs(*(np.array([v]) for v in b[: len(SabinBiarcs.__slots__)]))
+    return np.array([False]), nothing, tuple(np.array([np.nan]) for _ in range(4))
 
 
 def _verify_lazily(

@@ -182,10 +182,11 @@ def sabin_biarc_one(k: float, m: float, u0: float, u1: float, lam: float) -> Bia
 
 
 def verify_one(
-    k: float, m: float, u0: float, b: Biarc, tol: float
+    k: float, m: float, u0: float, b: Biarc, tol: float, *, lazily: bool = False
 ) -> tuple[float, float, float, float]:
     """:func:`verify` for one candidate: ``(dev0, u0_at, dev1, u1_at)``; an invalid biarc is
-    not measured (``inf``, where its ``u`` means nothing)."""
+    not measured (``inf``, where its ``u`` means nothing), nor, ``lazily``, the second arc of
+    a biarc whose first arc is out of the tolerance (NaN)."""
     if not b.ok:
         return math.inf, u0, math.inf, b.split
     u2, v2 = u0 * u0, b.u1 * b.u1
@@ -194,6 +195,8 @@ def verify_one(
     d0, w0 = one_arc_deviation(
         k, m, ax, ay, b.phi0, b.cos_phi0, b.sin_phi0, b.kappa0, b.gx, b.gy, u0, b.split, tol
     )
+    if lazily and not d0 <= tol:
+        return d0, w0, math.nan, math.nan
     d1, w1 = one_arc_deviation(
         k, m, b.gx, b.gy, b.psi, b.cos_psi, b.sin_psi, b.kappa1, bx, by, b.split, b.u1, tol
     )

@@ -19,7 +19,7 @@ from tests.support import oracle
 PAPER = {"start": (1.5, 3.0), "start_tangent": (1.0, 0.0), "turn_angle_deg": 51.34}
 #: Issue 6's ceilings on the paper's example, and the counts this implementation reaches.
 CEILING = {0.1: 2, 0.01: 4, 1e-3: 8, 1e-4: 15, 1e-5: 34}
-ACHIEVED = {0.1: 2, 0.01: 3, 1e-3: 7, 1e-4: 15, 1e-5: 32}
+ACHIEVED = {0.1: 2, 0.01: 3, 1e-3: 7, 1e-4: 15, 1e-5: 31}
 
 
 def _check(spiral: Spiral, tolerance: float, samples: int = 20_000) -> None:
@@ -244,7 +244,10 @@ def test_newton_steps_are_proven_and_reach_the_tolerance(monkeypatch: pytest.Mon
     assert max(worst) <= t * (1 + 1e-9)
     assert len(newton_ends) >= 10
     ends = chain.s[2::2]  # each biarc ends at every second split parameter
+    tail_start = chain.s[-4]  # the tail merge's three arcs replaced the last two biarcs
     for u1 in newton_ends:
+        if u1 > tail_start and not np.any(ends == u1):
+            continue
         (i,) = np.flatnonzero(ends == u1)
         assert max(worst[2 * i], worst[2 * i + 1]) >= fewest_newton.NEWTON_FLOOR * t * (1 - 1e-4)
 
