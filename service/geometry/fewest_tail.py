@@ -18,12 +18,24 @@ all three arcs within the tolerance, so the guarantee is the same as for the bia
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
 from . import canonical
-from .fewest_exact import arc_deviation, joint_split, screen_radial, split_guess
+from .fewest_biarc import numpy_divide
+from .fewest_exact import (
+    _joint_split_arrays,
+    arc_deviation,
+    joint_split,
+    one_arc_deviation,
+    screen_radial,
+    split_guess,
+)
+from .fewest_exact_one import HandBackError
+from .fewest_exact_one import joint_split as joint_split_one
 from .types import BoolArray, FloatArray
 
 _SAMPLES = 8
@@ -43,6 +55,20 @@ _GRID = (6, 3, 7)
 _GOOD = 0.97
 _HOPELESS = 2.5
 _HOPELESS_DECAY = 0.6
+
+
+def _lattice(*axes: FloatArray) -> FloatArray:
+    """Every combination of the axes' values, one per row (the first axis slowest)."""
+    return np.stack([a.ravel() for a in np.meshgrid(*axes, indexing="ij")], axis=1)
+
+
+#: The first grid in units of the span, the tolerance and λ; the pattern search's moves.
+_UNIT = _lattice(
+    np.linspace(0.15, 0.7, _GRID[0]),
+    np.linspace(-1.0, 1.0, _GRID[1]),
+    np.linspace(0.05, 0.95, _GRID[2]),
+)
+_CUBE = _lattice(*(np.linspace(-1.0, 1.0, _AXIS),) * 3)
 
 
 @dataclass(frozen=True, slots=True)
@@ -157,35 +183,21 @@ def best_triarcs(
     n = k.size
     span = 1.0 - ua
     rows = np.arange(n)
-    unit = np.stack(
-        [
-            a.ravel()
-            for a in np.meshgrid(
-                np.linspace(0.15, 0.7, _GRID[0]),
-                np.linspace(-1.0, 1.0, _GRID[1]),
-                np.linspace(0.05, 0.95, _GRID[2]),
-                indexing="ij",
-            )
-        ],
-        axis=1,
-    )
     scale = np.stack([span, tol, np.ones(n)], axis=1)
     offset = np.stack([ua, np.zeros(n), np.zeros(n)], axis=1)
-    grid = offset[:, None, :] + scale[:, None, :] * unit[None, :, :]
+    grid = offset[:, None, :] + scale[:, None, :] * _UNIT[None, :, :]
     _, score = _build(k, m, ua, grid, _COARSE_T)
     best = np.argmin(score, axis=1)
     centre = grid[rows, best]
     best_score = score[rows, best]
     width = np.stack([span * 0.07, tol * 0.5, np.full(n, 0.1)], axis=1)
-    steps = np.linspace(-1.0, 1.0, _AXIS)
-    cube = np.stack([a.ravel() for a in np.meshgrid(steps, steps, steps, indexing="ij")], axis=1)
     for round_ in range(_ROUNDS):
         # Refine only rows still above the target and not hopeless (see the constants).
         hopeless = 1.0 + (_HOPELESS - 1.0) * _HOPELESS_DECAY**round_
         act = np.flatnonzero((best_score > _GOOD * tol) & (best_score < hopeless * tol))
         if act.size == 0:
             break
-        grid = centre[act, None, :] + width[act, None, :] * cube[None, :, :]
+        grid = centre[act, None, :] + width[act, None, :] * _CUBE[None, :, :]
         lo = (ua[act] + 1e-9 * span[act])[:, None]
         hi = (1.0 - 1e-9 * span[act])[:, None]
         grid[..., 0] = np.clip(grid[..., 0], lo, hi)
@@ -197,6 +209,9 @@ def best_triarcs(
         centre[up] = grid[np.flatnonzero(better), best[better]]
         best_score[up] = top[better]
         width *= _SHRINK
+    if n == 1 and PROVE_ONE_IN_FLOATS:
+        return [_prove_one(float(k[0]), float(m[0]), float(ua[0]), centre[0].tolist(),
+                           float(best_score[0]), float(tol[0]))]  # fmt: skip
     with np.errstate(invalid="ignore", divide="ignore"):
         t = _triarcs(k, m, ua, centre[:, 0], centre[:, 1], centre[:, 2])
     ok = t.ok & (best_score <= 0.999 * tol)
@@ -223,3 +238,106 @@ def best_triarcs(
         row = Triarc(*(getattr(t, f)[r : r + 1] for f in Triarc.__slots__))
         out.append((row, value[r], where[r]))
     return out
+
+
+#: One spiral's winner is built and proven in floats (:func:`triarc_one`), the same numbers.
+PROVE_ONE_IN_FLOATS = True
+
+
+def _prove_one(
+    k: float, m: float, ua: float, centre: list[float], score: float, tol: float
+) -> tuple[Triarc, FloatArray, FloatArray] | None:
+    """The end of :func:`best_triarcs` for one row, in floats: the winner's triarc and the
+    exact deviations of its three arcs (the first that fails spares the rest)."""
+    t = triarc_one(k, m, ua, *centre)
+    if not (t.ok and score <= 0.999 * tol):
+        return None
+    value, where = [], []
+    for i in range(3):
+        d, u = one_arc_deviation(
+            k, m, t.x[i], t.y[i], t.phi[i], t.cos_phi[i], t.sin_phi[i], t.kappa[i],
+            t.x[i + 1], t.y[i + 1], t.s[i], t.s[i + 1], tol,
+        )  # fmt: skip
+        if not d <= tol:
+            return None
+        value.append(d)
+        where.append(u)
+    row = Triarc(
+        x=np.array([t.x]), y=np.array([t.y]), phi=np.array([t.phi]), kappa=np.array([t.kappa]),
+        s=np.array([t.s]), ok=np.array([True]),
+    )  # fmt: skip
+    return row, np.array(value), np.array(where)
+
+
+class TriarcOne(NamedTuple):
+    """:class:`Triarc` of one candidate in floats, with its arcs' start directions' cosines
+    and sines (numpy's, for the proof)."""
+
+    x: tuple[float, float, float, float]
+    y: tuple[float, float, float, float]
+    phi: tuple[float, float, float, float]
+    kappa: tuple[float, float, float]
+    s: tuple[float, float, float, float]
+    ok: bool
+    cos_phi: tuple[float, float, float]
+    sin_phi: tuple[float, float, float]
+
+
+def triarc_one(k: float, m: float, ua: float, v: float, delta: float, lam: float) -> TriarcOne:
+    """:func:`_triarcs` (``exact=True``) for one candidate, in floats, operation for operation;
+    arctangents, sines, cosines and ``hypot`` are numpy's own, so the numbers are the
+    arrays' bit for bit (tests/geometry/test_fewest_tail.py)."""
+    wa, wv = ua * ua, v * v
+    ax, ay = ua * (3.0 + k * wa), m * wa * ua
+    bx, by = 1.0 * (3.0 + k * 1.0), m * 1.0 * 1.0
+    phi_a, phi_b, tv = np.arctan2(
+        [m * wa, m * 1.0, m * wv], [1.0 + k * wa, 1.0 + k * 1.0, 1.0 + k * wv]
+    ).tolist()
+    sin_tv, cos_tv = float(np.sin(tv)), float(np.cos(tv))
+    nx, ny = -sin_tv, cos_tv
+    h = v - ua
+    sigma = v * v + v * ua + ua * ua
+    cx, cy = h * (3.0 + k * sigma) + delta * nx, h * m * sigma + delta * ny
+    h = 1.0 - v
+    sigma = 1.0 * 1.0 + 1.0 * v + v * v
+    dx, dy = h * (3.0 + k * sigma) - delta * nx, h * m * sigma - delta * ny
+    chi0, chi = np.arctan2([cy, dy], [cx, dx]).tolist()
+    chord0 = float(np.hypot(cx, cy))
+    psi1 = 2.0 * chi0 - phi_a
+    jx, jy = ax + cx, ay + cy
+    alpha, beta = chi - psi1, phi_b - chi
+    psi2 = chi - beta + lam * (alpha + beta)
+    h0, h1 = 0.5 * (psi1 + psi2), 0.5 * (psi2 + phi_b)
+    sin_a0, half_turn, s1, s0, half_1, half_2, sin_psi1, sin_psi2, sin_phi_a = np.sin(
+        [chi0 - phi_a, 0.5 * (phi_b - psi1), h1, h0, 0.5 * (psi2 - psi1), 0.5 * (phi_b - psi2),
+         psi1, psi2, phi_a]
+    ).tolist()  # fmt: skip
+    c1, c0, cos_psi1, cos_psi2, cos_phi_a = np.cos([h1, h0, psi1, psi2, phi_a]).tolist()
+    kappa0 = numpy_divide(2.0 * sin_a0, chord0)
+    len0 = numpy_divide(dx * s1 - dy * c1, half_turn)
+    len1 = numpy_divide(c0 * dy - s0 * dx, half_turn)
+    kappa1 = numpy_divide(2.0 * half_1, len0)
+    kappa2 = numpy_divide(2.0 * half_2, len1)
+    gx, gy = jx + len0 * c0, jy + len0 * s0
+    split1 = _joint_split(k, m, jx, jy, cos_psi1, sin_psi1)
+    split2 = _joint_split(k, m, gx, gy, cos_psi2, sin_psi2)
+    ok = half_turn > 0.0 and len0 > 0.0 and len1 > 0.0 and split1 > ua and split2 > split1
+    ok = ok and split2 < 1.0 and math.isfinite(kappa1) and math.isfinite(kappa2)
+    return TriarcOne(
+        x=(ax, jx, gx, bx),
+        y=(ay, jy, gy, by),
+        phi=(phi_a, psi1, psi2, phi_b),
+        kappa=(kappa0, kappa1, kappa2),
+        s=(ua, split1, split2, 1.0),
+        ok=ok,
+        cos_phi=(cos_phi_a, cos_psi1, cos_psi2),
+        sin_phi=(sin_phi_a, sin_psi1, sin_psi2),
+    )
+
+
+def _joint_split(k: float, m: float, jx: float, jy: float, tx: float, ty: float) -> float:
+    """``fewest_exact.joint_split`` of one joint in floats, or by the arrays if handed back."""
+    try:
+        return joint_split_one(k, m, jx, jy, tx, ty)
+    except HandBackError:
+        return float(_joint_split_arrays(*(np.array([v]) for v in (k, m, jx, jy, tx, ty)))[0])

@@ -15,7 +15,14 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from service.geometry import Spiral, approximate, approximate_many, fewest_exact, fewest_newton
+from service.geometry import (
+    Spiral,
+    approximate,
+    approximate_many,
+    fewest_exact,
+    fewest_newton,
+    fewest_tail,
+)
 from service.geometry import fewest as fewest_module
 from service.geometry import fewest_exact_one as one
 from tests.geometry.test_fewest import PAPER
@@ -157,6 +164,7 @@ def test_fewest_results_do_not_depend_on_the_float_path(
     monkeypatch.setattr(fewest_exact, "FLOAT_ELEMENTS", 0)
     monkeypatch.setattr(fewest_module, "PROVE_IN_FLOATS", 0)
     monkeypatch.setattr(fewest_newton, "FLOAT_ROWS", 0)
+    monkeypatch.setattr(fewest_tail, "PROVE_ONE_IN_FLOATS", False)
     plain = [approximate(s, t, "fewest-arcs") for s, t in cases]
     many = approximate_many([s for s, _ in cases], [t for _, t in cases], "fewest-arcs")
     for f, p, b in zip(fast, plain, many, strict=True):
