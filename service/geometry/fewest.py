@@ -524,7 +524,11 @@ def _prove_one(
     """:func:`_prove` of one row in floats: each rung's biarc is built only when the rungs
     before it have failed (:func:`_verify_lazily`'s order), the same numbers."""
     first = None
+    tried: set[float] = set()
     for u1 in cand_u if has else ():
+        if u1 in tried:  # the same biarc fails again (the crossing may be the longest fit)
+            continue
+        tried.add(u1)
         b = sabin_biarc_one(k, m, u0, u1, lam)
         first = first or b
         if not b.ok:
