@@ -251,13 +251,16 @@ class ArcSpline:
         self._columns: SegmentColumns | None = None
         self._values: list[SegmentValues] | None = None
         self._batch: SegmentColumns | None = None
-        if isinstance(columns, list):
-            self._values = columns
-        elif rows is None:
-            self._batch = self._columns = columns
-        else:
+        if rows is not None:  # a batch's spline: the common case, thousands at a time
+            assert not isinstance(columns, list)
             self._batch = columns
-        self._begin, self._end = (0, len(columns)) if rows is None else rows
+            self._begin, self._end = rows
+        else:
+            if isinstance(columns, list):
+                self._values = columns
+            else:
+                self._batch = self._columns = columns
+            self._begin, self._end = 0, len(columns)
         self._stats = stats
         self._tolerance = tolerance
         self._strategy = strategy
