@@ -27,14 +27,12 @@ import numpy as np
 
 from . import canonical
 from .fewest_exact import (
-    _joint_split_arrays,
     arc_deviation,
     joint_split,
     one_arc_deviation,
+    one_joint_split,
     split_guess,
 )
-from .fewest_exact_one import HandBackError
-from .fewest_exact_one import joint_split as joint_split_one
 from .types import BoolArray, FloatArray
 
 #: Join parameters stay this far inside ``(0, 1)``.
@@ -169,11 +167,7 @@ def sabin_biarc_one(k: float, m: float, u0: float, u1: float, lam: float) -> Bia
     kappa1 = numpy_divide(2.0 * half_b, len1)
     gx, gy = ax + len0 * c0, ay + len0 * s0
     ok = len0 > 0.0 and len1 > 0.0 and math.isfinite(kappa0) and math.isfinite(kappa1)
-    try:
-        split = joint_split_one(k, m, gx, gy, cos_psi, sin_psi)
-    except HandBackError:
-        columns = (np.array([v]) for v in (k, m, gx, gy, cos_psi, sin_psi))
-        split = float(_joint_split_arrays(*columns)[0])
+    split = one_joint_split(k, m, gx, gy, cos_psi, sin_psi)
     ok = ok and u0 < split < u1
     return Biarc(
         u1, lam, phi0, psi, phi1, kappa0, kappa1, gx, gy, split, ok,

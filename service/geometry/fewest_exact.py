@@ -129,14 +129,18 @@ def joint_split(
     shape = np.broadcast_shapes(k.shape, m.shape, jx.shape, jy.shape, phi.shape)
     if math.prod(shape) > FLOAT_ELEMENTS:
         return _joint_split_arrays(k, m, jx, jy, tx, ty)
-    columns = [np.broadcast_to(v, shape).ravel() for v in (k, m, jx, jy, tx, ty)]
-    splits = []
-    for i, args in enumerate(zip(*(c.tolist() for c in columns), strict=True)):
-        try:
-            splits.append(fewest_exact_one.joint_split(*args))
-        except fewest_exact_one.HandBackError:
-            splits.append(float(_joint_split_arrays(*(c[i : i + 1] for c in columns))[0]))
+    columns = [np.broadcast_to(v, shape).ravel().tolist() for v in (k, m, jx, jy, tx, ty)]
+    splits = [one_joint_split(*args) for args in zip(*columns, strict=True)]
     return np.array(splits, dtype=np.float64).reshape(shape)
+
+
+def one_joint_split(k: float, m: float, jx: float, jy: float, tx: float, ty: float) -> float:
+    """:func:`joint_split` of one joint, given ``tx, ty = np.cos(φ), np.sin(φ)``: in floats,
+    or by the arrays where the float restatement hands the joint back."""
+    try:
+        return fewest_exact_one.joint_split(k, m, jx, jy, tx, ty)
+    except fewest_exact_one.HandBackError:
+        return float(_joint_split_arrays(*(np.array([v]) for v in (k, m, jx, jy, tx, ty)))[0])
 
 
 def _joint_split_arrays(

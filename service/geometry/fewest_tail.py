@@ -27,15 +27,13 @@ import numpy as np
 from . import canonical
 from .fewest_biarc import numpy_divide
 from .fewest_exact import (
-    _joint_split_arrays,
     arc_deviation,
     joint_split,
     one_arc_deviation,
+    one_joint_split,
     screen_radial,
     split_guess,
 )
-from .fewest_exact_one import HandBackError
-from .fewest_exact_one import joint_split as joint_split_one
 from .types import BoolArray, FloatArray
 
 _SAMPLES = 8
@@ -319,8 +317,8 @@ def triarc_one(k: float, m: float, ua: float, v: float, delta: float, lam: float
     kappa1 = numpy_divide(2.0 * half_1, len0)
     kappa2 = numpy_divide(2.0 * half_2, len1)
     gx, gy = jx + len0 * c0, jy + len0 * s0
-    split1 = _joint_split(k, m, jx, jy, cos_psi1, sin_psi1)
-    split2 = _joint_split(k, m, gx, gy, cos_psi2, sin_psi2)
+    split1 = one_joint_split(k, m, jx, jy, cos_psi1, sin_psi1)
+    split2 = one_joint_split(k, m, gx, gy, cos_psi2, sin_psi2)
     ok = half_turn > 0.0 and len0 > 0.0 and len1 > 0.0 and split1 > ua and split2 > split1
     ok = ok and split2 < 1.0 and math.isfinite(kappa1) and math.isfinite(kappa2)
     return TriarcOne(
@@ -333,11 +331,3 @@ def triarc_one(k: float, m: float, ua: float, v: float, delta: float, lam: float
         cos_phi=(cos_phi_a, cos_psi1, cos_psi2),
         sin_phi=(sin_phi_a, sin_psi1, sin_psi2),
     )
-
-
-def _joint_split(k: float, m: float, jx: float, jy: float, tx: float, ty: float) -> float:
-    """``fewest_exact.joint_split`` of one joint in floats, or by the arrays if handed back."""
-    try:
-        return joint_split_one(k, m, jx, jy, tx, ty)
-    except HandBackError:
-        return float(_joint_split_arrays(*(np.array([v]) for v in (k, m, jx, jy, tx, ty)))[0])
