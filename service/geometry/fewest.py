@@ -6,12 +6,8 @@ at its worst point, which spends arcs freely. Here, in the canonical frame of
 point ``A0 = Q(u0)`` the next biarc ends at the *largest* ``u1`` for which *some* biarc of the
 one-parameter family between ``(A0, T(u0))`` and ``(Q(u1), T(u1))`` stays within the tolerance.
 
-**The family (Sabin's circle).** For end directions ``φ0``, ``φ1`` and chord direction ``χ``,
-the join tangent ``ψ`` ranges over ``(2χ − φ1, 2χ − φ0)`` (the incentre biarc is ``ψ = χ``).
-Each arc's chord runs along the mean of its end directions, so the chord lengths solve
-``A1 − A0 = L0·e((φ0 + ψ)/2) + L1·e((ψ + φ1)/2)`` and the join point is
-``G = A0 + L0·e((φ0 + ψ)/2)``; curvatures are ``κ = 2·sin(turn/2)/L``. ``ψ`` is searched as
-``χ − β + λ(α + β)``, ``λ ∈ (0, 1)``, ``α = χ − φ0``, ``β = φ1 − χ``.
+**The family (Sabin's circle)** is parametrised by the join parameter ``λ ∈ (0, 1)``
+(:mod:`service.geometry.fewest_biarc`, which builds the biarcs and measures them).
 
 **Search, then proof.** Candidates ``(u1, λ)`` are screened by the radial distance at a few
 samples per arc (an estimate from below of the deviation; it only discards candidates). Spans

@@ -53,6 +53,8 @@ _GRID = (6, 3, 7)
 _GOOD = 0.97
 _HOPELESS = 2.5
 _HOPELESS_DECAY = 0.6
+#: One spiral's winner is built and proven in floats (:func:`triarc_one`), the same numbers.
+PROVE_ONE_IN_FLOATS = True
 
 
 def _lattice(*axes: FloatArray) -> FloatArray:
@@ -236,10 +238,6 @@ def best_triarcs(
         row = Triarc(*(getattr(t, f)[r : r + 1] for f in Triarc.__slots__))
         out.append((row, value[r], where[r]))
     return out
-
-
-#: One spiral's winner is built and proven in floats (:func:`triarc_one`), the same numbers.
-PROVE_ONE_IN_FLOATS = True
 
 
 def _prove_one(
