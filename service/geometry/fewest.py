@@ -60,6 +60,7 @@ from .assemble import FLAT_SWEEP_RAD, Frames, splines
 from .errors import GeometryError
 from .fewest_biarc import (
     LAMBDA_MARGIN,
+    NO_BIARC,
     SabinBiarcs,
     sabin_biarc_one,
     sabin_biarcs,
@@ -519,24 +520,24 @@ def _prove_one(
 ) -> tuple[BoolArray, SabinBiarcs, tuple[FloatArray, ...]]:
     """:func:`_prove` of one row in floats: each rung's biarc is built only when the rungs
     before it have failed (:func:`_verify_lazily`'s order), the same numbers."""
-    first = None
     tried: set[float] = set()
     for u1 in cand_u if has else ():
         if u1 in tried:  # the same biarc fails again (the crossing may be the longest fit)
             continue
         tried.add(u1)
         b = sabin_biarc_one(k, m, u0, u1, lam)
-        first = first or b
         if not b.ok:
             continue
         d0, w0, d1, w1 = verify_one(k, m, u0, b, tol, lazily=True)
         if d0 <= tol and d1 <= tol:
-            chosen = SabinBiarcs(*(np.array([v]) for v in b[: len(SabinBiarcs.__slots__)]))
-            return np.array([True]), chosen, tuple(np.array([d]) for d in (d0, w0, d1, w1))
+            devs = tuple(np.array([d]) for d in (d0, w0, d1, w1))
+            return np.array([True]), SabinBiarcs.of([b]), devs
     # No rung proven: the row's biarc and deviations mean nothing (as for the arrays).
-    b = first or sabin_biarc_one(k, m, u0, 1.0, lam)
-    nothing = SabinBiarcs(*(np.array([v]) for v in b[: len(SabinBiarcs.__slots__)]))
-    return np.array([False]), nothing, tuple(np.array([np.nan]) for _ in range(4))
+    return (
+        np.array([False]),
+        SabinBiarcs.of([NO_BIARC]),
+        tuple(np.full(1, np.nan) for _ in range(4)),
+    )
 
 
 def _verify_lazily(

@@ -20,6 +20,7 @@ result (tests/geometry/test_fewest_biarc.py holds them equal).
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import NamedTuple
 
@@ -54,6 +55,11 @@ class SabinBiarcs:
     gy: FloatArray
     split: FloatArray
     ok: BoolArray
+
+    @classmethod
+    def of(cls, biarcs: Sequence[Biarc]) -> SabinBiarcs:
+        """One element per candidate built in floats (:func:`sabin_biarc_one`)."""
+        return cls(*(np.array([b[i] for b in biarcs]) for i in range(len(cls.__slots__))))
 
 
 def sabin_biarcs(
@@ -132,6 +138,10 @@ class Biarc(NamedTuple):
     sin_phi0: float
     cos_psi: float
     sin_psi: float
+
+
+#: A candidate that was never built: what a row without a result carries (never read).
+NO_BIARC = Biarc(*(math.nan,) * 10, False, *(math.nan,) * 4)
 
 
 def numpy_divide(a: float, b: float) -> float:

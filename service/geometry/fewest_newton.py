@@ -185,9 +185,7 @@ def newton_step(
         )
     ]
     found = np.array([r.found for r in rows], dtype=bool)
-    chosen = SabinBiarcs(
-        *(np.array([r.biarc[i] for r in rows]) for i in range(len(SabinBiarcs.__slots__)))
-    )
+    chosen = SabinBiarcs.of([r.biarc for r in rows])
     devs = tuple(np.array([r.devs[i] for r in rows]) for i in range(4))
     return found, chosen, devs, np.array([r.jacobian for r in rows])
 
