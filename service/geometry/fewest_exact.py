@@ -445,9 +445,13 @@ def _distinct(points: FloatArray, hi: FloatArray) -> FloatArray:
 def _horner(c: FloatArray, x: FloatArray) -> FloatArray:
     """Ascending coefficients ``c`` (rows, degree+1) at ``x`` (rows,) or (rows, j)."""
     columns = c.T.reshape(c.shape[::-1] + (1,) * (x.ndim - 1))
-    result = np.broadcast_to(columns[-1], x.shape).copy()
-    for cj in columns[-2::-1]:
+    if len(columns) == 1:
+        return np.broadcast_to(columns[0], x.shape).copy()
+    # The first step ``c_d·x + c_(d−1)`` starts the array (a broadcast copy of ``c_d`` to
+    # multiply in place costs more, on these many small calls): the same operations.
+    result: FloatArray = columns[-1] * x
+    result += columns[-2]
+    for cj in columns[-3::-1]:
         result *= x
         result += cj
-    out: FloatArray = result
-    return out
+    return result

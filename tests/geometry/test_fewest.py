@@ -271,3 +271,68 @@ def test_a_newton_miss_leaves_the_grid_search_its_row(monkeypatch: pytest.Monkey
         assert b is not None
         for name in a.__slots__:
             np.testing.assert_array_equal(getattr(a, name), getattr(b, name))
+
+
+def test_a_single_walk_closes_early_with_the_chains_a_batch_closes_after(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    # One spiral tries each tail triarc as soon as its walk nears the end and stops there when
+    # it is proven; a batch walks on and tries every row's points in order in one call after
+    # the walk. Biarcs screened short (30 % of the tolerance, no Newton step) and CLOSE_REACH
+    # raised give rows several such points, some proven before the last (shorter chains):
+    # the batch's chains must still be those of single walks, element for element.
+    from service.geometry import fewest
+
+    rng = np.random.default_rng(12)
+    theta = np.radians(rng.uniform(10.0, 85.0, 10))
+    k, m = 1.2 * np.cos(theta) ** 2 - 1.0, 1.2 * np.cos(theta) * np.sin(theta)
+    tol = 10 ** rng.uniform(-5.0, -2.0, 10)
+    limit = np.full(10, 200)
+    monkeypatch.setattr(fewest, "SCREEN_FACTORS", (0.3, 0.2))
+    monkeypatch.setattr(fewest, "NEWTON_REACH", 1e9)
+    usual = [c.kappa.size for c in fewest.fewest_chains(k, m, tol, limit)]  # type: ignore[union-attr]
+    monkeypatch.setattr(fewest, "CLOSE_REACH", 3.0)
+    calls: list[int] = []
+    real = fewest.best_triarcs
+
+    def spy(*args):  # type: ignore[no-untyped-def]
+        calls.append(args[0].size)
+        return real(*args)
+
+    monkeypatch.setattr(fewest, "best_triarcs", spy)
+    batch = fewest.fewest_chains(k, m, tol, limit)
+    assert len(calls) == 1
+    assert calls[0] > 10  # some rows with several points
+    shorter = 0
+    for i, chain in enumerate(batch):
+        (single,) = fewest.fewest_chains(k[i : i + 1], m[i : i + 1], tol[i : i + 1], limit[:1])
+        assert chain is not None
+        assert single is not None
+        for name in chain.__slots__:
+            np.testing.assert_array_equal(getattr(chain, name), getattr(single, name))
+        shorter += chain.kappa.size < usual[i]
+    assert shorter >= 2
+
+
+def test_the_end_scan_shares_a_pass_with_the_same_numbers() -> None:
+    # The first step's end scan and geometric scan, evaluated in one pass, give every
+    # candidate the screened deviation that separate rounds give it (bit for bit).
+    from service.geometry import fewest
+
+    rng = np.random.default_rng(3)
+    theta = np.radians(rng.uniform(5.0, 89.0, 7))
+    k, m = 1.2 * np.cos(theta) ** 2 - 1.0, 1.2 * np.cos(theta) * np.sin(theta)
+    u0 = rng.uniform(0.0, 0.8, 7)
+    tol = 10 ** rng.uniform(-5.0, -1.0, 7)
+    grid = u0[:, None] + (1.0 - u0)[:, None] * rng.uniform(0.01, 1.0, (7, 9))
+    lams = rng.uniform(0.05, 0.95, (7, 4))
+    end, rest = fewest._evaluate_with_end(k, m, u0, grid, lams, tol)
+    lam_end = np.broadcast_to(fewest._END_LAMBDA_GRID, (7, fewest.END_LAMBDAS))
+    alone_end = fewest._evaluate(k, m, u0, np.ones((7, 1)), lam_end, tol)
+    alone = fewest._evaluate(k, m, u0, grid, lams, tol)
+    for got, want in ((end, alone_end), (rest, alone)):
+        np.testing.assert_array_equal(got.dev, want.dev)
+        np.testing.assert_array_equal(got.fits, want.fits)
+        np.testing.assert_array_equal(got.grid, want.grid)
+        np.testing.assert_array_equal(got.lams, want.lams)
+    assert np.isfinite(alone.dev).any()
