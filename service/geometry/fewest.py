@@ -315,20 +315,21 @@ def _screen_grid(
     k: FloatArray, m: FloatArray, u0: FloatArray, b: SabinBiarcs, samples: FloatArray
 ) -> FloatArray:
     """Largest sampled radial distance of each candidate biarc (a lower bound on its
-    deviation), inf if invalid; candidates broadcast over ``(rows, u1, λ)``, samples on a
-    fourth axis."""
-    k4, m4, u04 = (v[:, None, None, None] for v in (k, m, u0))
+    deviation), inf if invalid; candidates broadcast over ``(rows, u1, λ)``.
+
+    The samples lie on a first axis: numpy's maximum over a leading axis runs elementwise
+    over whole slabs, over a short trailing one element by element (30 times slower)."""
+    k3, m3, u03 = (v[:, None, None] for v in (k, m, u0))
     ok = b.ok  # (rows, u1, λ), like psi
-    split = np.where(ok, b.split, 0.5 * (u0[:, None, None] + b.u1))[..., None]
-    ax, ay = canonical.point(k4, m4, u04)
-    ua = u04 + (split - u04) * samples
-    ub = split + (b.u1[..., None] - split) * samples
-    n0x, n0y = -np.sin(b.phi0)[..., None], np.cos(b.phi0)[..., None]
-    n1x, n1y = -np.sin(b.psi)[..., None], np.cos(b.psi)[..., None]
-    e0 = screen_radial(k4, m4, ax, ay, n0x, n0y, b.kappa0[..., None], ua).max(axis=-1)
-    e1 = screen_radial(
-        k4, m4, b.gx[..., None], b.gy[..., None], n1x, n1y, b.kappa1[..., None], ub
-    ).max(axis=-1)
+    split = np.where(ok, b.split, 0.5 * (u03 + b.u1))
+    t = samples[:, None, None, None]
+    ax, ay = canonical.point(k3, m3, u03)
+    ua = u03 + (split - u03) * t
+    ub = split + (b.u1 - split) * t
+    n0x, n0y = -np.sin(b.phi0), np.cos(b.phi0)
+    n1x, n1y = -np.sin(b.psi), np.cos(b.psi)
+    e0 = screen_radial(k3, m3, ax, ay, n0x, n0y, b.kappa0, ua).max(axis=0)
+    e1 = screen_radial(k3, m3, b.gx, b.gy, n1x, n1y, b.kappa1, ub).max(axis=0)
     result: FloatArray = np.where(ok, np.maximum(e0, e1), np.inf)
     return result
 
