@@ -184,11 +184,15 @@ def split_guess(
     piece's middle or ``start`` (the proof recomputes it with :func:`joint_split`); NaN if it
     leaves the piece ``(u0, u1)``."""
     tx, ty = np.cos(psi), np.sin(psi)
+    # (Q(s) − G)·T = a·s³ + 3·t_x·s − G·T with a = k·t_x + m·t_y: a few operations a step.
+    a = k * tx + m * ty
+    b = 3.0 * tx
+    c = gx * tx + gy * ty
+    a3 = 3.0 * a
     s = 0.5 * (u0 + u1) if start is None else start
     for _ in range(SPLIT_STEPS):
         s2 = s * s
-        value = (s * (3.0 + k * s2) - gx) * tx + (m * s2 * s - gy) * ty
-        s = s - value / (3.0 * (tx * (1.0 + k * s2) + ty * m * s2))
+        s = s - (s * (a * s2 + b) - c) / (a3 * s2 + b)
     result: FloatArray = np.where((s > u0) & (s < u1), s, np.nan)
     return result
 
