@@ -52,6 +52,7 @@ paper's, and ``subdivide``'s errors (segment limit, precision) are reported unch
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -64,6 +65,7 @@ from .fewest_biarc import (
     LAMBDA_MARGIN,
     NO_BIARC,
     SabinBiarcs,
+    numpy_divide,
     sabin_biarc_one,
     sabin_biarcs,
     verify,
@@ -107,6 +109,9 @@ LADDER = np.array([0.998, 0.994, 0.985, 0.96, 0.9])
 #: Up to this many candidates (rows × rungs) are proven one arc at a time in floats, rung
 #: after rung until one is proven; more go to numpy all at once. Either way the same result.
 PROVE_IN_FLOATS = 8
+
+#: A single row's search keeps its bookkeeping in floats (:func:`_search_one`, the same result).
+SEARCH_ONE_IN_FLOATS = True
 
 #: Screening aims at these fractions of the tolerance, in turn, until a candidate is proven.
 SCREEN_FACTORS = (0.999, 0.99, 0.95, 0.8, 0.5)
@@ -382,6 +387,8 @@ def _search_many(
     the hints (or a geometric grid over ``(u0, 1]`` and all ``λ``), refining rounds, then the
     proof of the best candidates."""
     n = k.size
+    if n == 1 and SEARCH_ONE_IN_FLOATS:
+        return _search_one(k, m, u0, tol, screen_tol, hint, lam_hint)
     hint, lam_hint = hint.copy(), lam_hint.copy()
     span = 1.0 - u0
     full = u0[:, None] + span[:, None] * _U_STEP_GRID[None, :]
@@ -514,6 +521,148 @@ def _search_many(
         for mine, theirs in zip(devs, d2, strict=True):
             mine[redo] = theirs
     return found, chosen, devs
+
+
+def _search_one(
+    k: FloatArray,
+    m: FloatArray,
+    u0: FloatArray,
+    tol: FloatArray,
+    screen_tol: FloatArray,
+    hint: FloatArray,
+    lam_hint: FloatArray,
+) -> tuple[BoolArray, SabinBiarcs, tuple[FloatArray, ...]]:
+    """:func:`_search_many` of one row, its bookkeeping in floats (:func:`_top_one`,
+    :func:`_crossing_one`): the same rounds, the same numbers (each round's arrays are
+    numpy's, with one row), the same result."""
+    start, target = float(u0[0]), float(screen_tol[0])
+    h, lam_h = float(hint[0]), float(lam_hint[0])
+    span = 1.0 - start
+    full = start + span * _U_STEP_GRID
+    full[0] = 1.0
+    hinted = 0.0 < h < span
+    u_top, lam_top, has, width = 0.0, 0.5, False, 1.0 / LAMBDAS
+    tried: list[float] = []
+
+    def near_grid(h: float, lam_h: float) -> tuple[FloatArray, FloatArray]:
+        near = np.minimum(start + h * _HINT_SCALE, 1.0)
+        lams = np.clip(lam_h + _HINT_LAMBDA_GRID, LAMBDA_MARGIN, 1.0 - LAMBDA_MARGIN)
+        return near, lams
+
+    def first(grid: FloatArray, lams: FloatArray, w: float, rnd: _Round | None = None) -> None:
+        nonlocal u_top, lam_top, has, width
+        if rnd is None:
+            rnd = _evaluate(k, m, u0, grid[None, :], lams[None, :], screen_tol)
+        top_u, top_l, ok = _top_one(rnd, target)
+        if ok and (not has or top_u > u_top):
+            u_top, lam_top, has, width = top_u, top_l, True, w
+        tried.extend(grid.tolist())
+
+    def reach_end(rnd: _Round) -> bool:
+        nonlocal u_top, lam_top, has
+        _, top_l, ok = _top_one(rnd, target)
+        if ok:
+            u_top, lam_top, has = 1.0, top_l, True
+        return ok
+
+    near, lam_near = near_grid(h, lam_h)
+    scanned = None
+    if h > 0.0 and (not hinted or start + h * 2.0**HINT_OCTAVES >= 1.0):
+        ones = np.ones((1, 1))
+        reach_end(_evaluate(k, m, u0, ones, _END_LAMBDA_GRID[None, :], screen_tol))
+    elif h <= 0.0:
+        at_end, scanned = _evaluate_with_end(
+            k, m, u0, full[None, :], _SCAN_LAMBDA_GRID[None, :], screen_tol
+        )
+        reach_end(at_end)
+    scan = not hinted and not has
+    if scan:
+        first(full, _SCAN_LAMBDA_GRID, SCAN_WIDTH, scanned)
+    hinted = hinted and not has
+    if scan:
+        h = (u_top - start) * 2.0**0.25 if has else 0.0
+        lam_h = lam_top
+        hinted = has and u_top < 1.0
+        has = has and u_top >= 1.0
+        near, lam_near = near_grid(h, lam_h)
+    if hinted:
+        first(np.concatenate([[1.0], near]), lam_near, 2.0 * HINT_LAMBDA / (HINT_LAMBDAS - 1))
+    longest = start + h * 2.0**HINT_OCTAVES
+    if hinted and not scan and (not has or (u_top == near[0] and longest < 1.0)):
+        first(full, _LAMBDA_GRID, 1.0 / LAMBDAS)
+
+    refining = has and u_top < 1.0
+    u_star = u_top
+    for _ in range(REFINE_ROUNDS):
+        if not refining:
+            break
+        above = min((u for u in tried if u > u_top), default=math.inf)
+        hi = above if math.isfinite(above) else 1.0
+        grid = u_top + (hi - u_top) * _REFINE_GRID
+        lams = np.clip(lam_top + width * _REFINE_LAMBDA_GRID, LAMBDA_MARGIN, 1.0 - LAMBDA_MARGIN)
+        rnd = _evaluate(k, m, u0, grid[None, :], lams[None, :], screen_tol, _SAMPLE_T)
+        top_u, top_l, ok = _top_one(rnd, target)
+        if ok:
+            u_top, lam_top = top_u, top_l
+            u_star = _crossing_one(rnd, top_u, target)
+        tried.extend(grid.tolist())
+        refining = ok and top_u < 1.0
+        width *= 2.0 / (REFINE_LAMBDAS - 1)
+
+    rungs = np.array([[u_star, u_top, start + (u_top - start) * float(LADDER[0])]])
+    lam, fits = np.array([lam_top]), np.array([has])
+    result = _prove(k, m, u0, tol, rungs, lam, fits)
+    if has and not result[0][0]:
+        more = start + (u_top - start) * LADDER[None, 1:]
+        result = _prove(k, m, u0, tol, more, lam, fits)
+    return result
+
+
+def _top_one(rnd: _Round, target: float) -> tuple[float, float, bool]:
+    """:func:`_top` of a one-row round, in floats."""
+    dev: list[list[float]] = rnd.dev[0].tolist()
+    grid: list[float] = rnd.grid[0].tolist()
+    at = _longest_fit(grid, dev, target)
+    row = max(at, 0)  # numpy's argmax where nothing fits
+    return grid[row], float(rnd.lams[0, _argmin(dev[row])]), at >= 0
+
+
+def _longest_fit(grid: list[float], dev: list[list[float]], target: float) -> int:
+    """Index of the largest ``u1`` with a fitting ``λ`` (numpy's first maximum), -1 if none."""
+    at, longest = -1, -math.inf
+    for j, (u, row) in enumerate(zip(grid, dev, strict=True)):
+        if u > longest and any(d <= target for d in row):
+            at, longest = j, u
+    return at
+
+
+def _argmin(values: list[float]) -> int:
+    """``np.argmin``: the first NaN, else the first minimum."""
+    best = 0
+    for j, v in enumerate(values):
+        if v != v:
+            return j
+        if v < values[best]:
+            best = j
+    return best
+
+
+def _nanmin(values: list[float]) -> float:
+    """``np.min``: NaN if any value is NaN."""
+    return values[_argmin(values)]
+
+
+def _crossing_one(rnd: _Round, u_top: float, target: float) -> float:
+    """:func:`_crossing` of a one-row round, in floats."""
+    dev: list[list[float]] = rnd.dev[0].tolist()
+    grid: list[float] = rnd.grid[0].tolist()
+    at = max(_longest_fit(grid, dev, target), 0)
+    nxt = min(at + 1, len(grid) - 1)
+    d_top, d_next = _nanmin(dev[at]), _nanmin(dev[nxt])
+    t = numpy_divide(target - d_top, d_next - d_top)
+    t = t if t != t else min(max(t, 0.0), 1.0)
+    t = t if math.isfinite(t) and nxt > at else 0.0
+    return u_top + (grid[nxt] - u_top) * t
 
 
 def _prove(

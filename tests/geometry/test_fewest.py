@@ -336,3 +336,57 @@ def test_the_end_scan_shares_a_pass_with_the_same_numbers() -> None:
         np.testing.assert_array_equal(got.grid, want.grid)
         np.testing.assert_array_equal(got.lams, want.lams)
     assert np.isfinite(alone.dev).any()
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_one_rows_search_in_floats_is_the_array_result(
+    seed: int, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # A single row's search keeps its bookkeeping in floats: from every kind of start (no
+    # hint, a hint past the end, near the end, far from it), found, biarc and deviations must
+    # be the array bookkeeping's, bit for bit.
+    from service.geometry import fewest
+
+    rng = np.random.default_rng(seed)
+    cases = 0
+    for _ in range(12):
+        theta = math.radians(float(rng.uniform(3.0, 88.0)))
+        k = np.array([1.2 * math.cos(theta) ** 2 - 1.0])
+        m = np.array([1.2 * math.cos(theta) * math.sin(theta)])
+        u0 = np.array([float(rng.choice([0.0, rng.uniform(0.0, 0.95)]))])
+        span = 1.0 - float(u0[0])
+        hint = np.array([float(rng.choice([0.0, 0.05, 0.3, 0.7, 1.5])) * span])
+        tol = np.array([10 ** float(rng.uniform(-6.0, -1.0))])
+        lam = np.array([float(rng.uniform(0.2, 0.8))])
+        args = (k, m, u0, tol, 0.999 * tol, hint, lam)
+        monkeypatch.setattr(fewest, "SEARCH_ONE_IN_FLOATS", True)
+        fast = fewest._search_many(*args)
+        monkeypatch.setattr(fewest, "SEARCH_ONE_IN_FLOATS", False)
+        plain = fewest._search_many(*args)
+        np.testing.assert_array_equal(fast[0], plain[0])
+        for name in fewest.SabinBiarcs.__slots__:
+            if plain[0][0]:
+                np.testing.assert_array_equal(getattr(fast[1], name), getattr(plain[1], name))
+        for a, b in zip(fast[2], plain[2], strict=True):
+            np.testing.assert_array_equal(a, b)
+        cases += bool(plain[0][0])
+    assert cases >= 8
+
+
+def test_one_rows_round_bookkeeping_is_numpys() -> None:
+    # The float bookkeeping of one row's round follows numpy's argmax/argmin/min exactly:
+    # repeated grid values (a hinted grid clipped at the end), NaN and inf deviations.
+    from service.geometry import fewest
+
+    rng = np.random.default_rng(5)
+    for _ in range(300):
+        w, n_lam = int(rng.integers(1, 8)), int(rng.integers(1, 6))
+        grid = np.sort(rng.choice([0.3, 0.5, 0.7, 1.0], w))[None, :]
+        dev = rng.choice([0.1, 0.5, 0.9, 1.1, 2.0, np.inf, np.nan], (1, w, n_lam))
+        target = float(rng.choice([0.5, 1.0]))
+        rnd = fewest._Round(grid, rng.uniform(0, 1, (1, n_lam)), dev, dev <= target)
+        top_u, top_l, has = fewest._top(rnd)
+        assert fewest._top_one(rnd, target) == (top_u[0], top_l[0], has[0])
+        if has[0]:
+            want = fewest._crossing(rnd, top_u, np.array([target]))[0]
+            assert fewest._crossing_one(rnd, float(top_u[0]), target) == want

@@ -163,6 +163,7 @@ def test_fewest_results_do_not_depend_on_the_float_path(
     fast = [approximate(s, t, "fewest-arcs") for s, t in cases]
     monkeypatch.setattr(fewest_exact, "FLOAT_ELEMENTS", 0)
     monkeypatch.setattr(fewest_module, "PROVE_IN_FLOATS", 0)
+    monkeypatch.setattr(fewest_module, "SEARCH_ONE_IN_FLOATS", False)
     monkeypatch.setattr(fewest_newton, "FLOAT_ROWS", 0)
     monkeypatch.setattr(fewest_tail, "PROVE_ONE_IN_FLOATS", False)
     plain = [approximate(s, t, "fewest-arcs") for s, t in cases]
