@@ -414,12 +414,13 @@ def _cascade_roots(
             dc = (
                 derivatives[level + 1][rows] if level < 4 else cr[:, 1:] * np.arange(1, cr.shape[1])
             )
-            sign = np.where(fa[rows, cols] < 0.0, 1.0, -1.0)
 
+            # Not oriented: Newton's steps f/f' do not depend on the sign, and the safeguarded
+            # iteration orients each element itself.
             def fn(
-                x: FloatArray, cr: FloatArray = cr, dc: FloatArray = dc, sign: FloatArray = sign
+                x: FloatArray, cr: FloatArray = cr, dc: FloatArray = dc
             ) -> tuple[FloatArray, FloatArray]:
-                return sign * _horner(cr, x), sign * _horner(dc, x)
+                return _horner(cr, x), _horner(dc, x)
 
             a_w, b_w = a[rows, cols], b[rows, cols]
             fa_w, fb_w = fa[rows, cols], fb[rows, cols]

@@ -235,12 +235,9 @@ def _cascade_roots(
                 root = min(max(math.sqrt(ratio), a), b)
             else:
                 dc = derivatives[level + 1]
-                sign = 1.0 if fa < 0.0 else -1.0
 
-                def fn(
-                    x: float, c: list[float] = c, dc: list[float] = dc, sign: float = sign
-                ) -> tuple[float, float]:
-                    return sign * _horner(c, x), sign * _horner(dc, x)
+                def fn(x: float, c: list[float] = c, dc: list[float] = dc) -> tuple[float, float]:
+                    return _horner(c, x), _horner(dc, x)
 
                 root = newton(fn, a, b, a + (b - a) * fa / (fa - fb))
             if math.isnan(root):
