@@ -792,20 +792,23 @@ def fewest_chains(
     closed = np.zeros(n, dtype=bool)
 
     def record(rows: npt.NDArray[np.intp], found: BoolArray, b: SabinBiarcs, devs: Devs) -> None:
-        d0, w0, d1, w1 = devs
-        for j in np.flatnonzero(found).tolist():
-            r = int(rows[j])
-            u1 = float(b.u1[j])
-            bx, by = canonical.point(float(k[r]), float(m[r]), u1)
+        pick = np.flatnonzero(found)
+        at = rows[pick]
+        bx, by = canonical.point(k[at], m[at], b.u1[pick])
+        d0, w0, d1, w1 = (d[pick] for d in devs)
+        columns = (b.u1, b.gx, b.gy, b.psi, b.phi1, b.kappa0, b.kappa1, b.split, b.lam)
+        u1s, gxs, gys, psis, phi1s, k0s, k1s, splits, lams = (c[pick].tolist() for c in columns)
+        for i, r in enumerate(at.tolist()):
+            u1 = u1s[i]
             jx, jy, phi, kappa, s, dev, u_dev = parts[r]
-            jx += [float(b.gx[j]), float(bx)]
-            jy += [float(b.gy[j]), float(by)]
-            phi += [float(b.psi[j]), float(b.phi1[j])]
-            kappa += [float(b.kappa0[j]), float(b.kappa1[j])]
-            s += [float(b.split[j]), u1]
-            dev += [float(d0[j]), float(d1[j])]
-            u_dev += [float(w0[j]), float(w1[j])]
-            hint[r], u0[r], lam_hint[r] = u1 - u0[r], u1, float(b.lam[j])
+            jx += [gxs[i], float(bx[i])]
+            jy += [gys[i], float(by[i])]
+            phi += [psis[i], phi1s[i]]
+            kappa += [k0s[i], k1s[i]]
+            s += [splits[i], u1]
+            dev += [float(d0[i]), float(d1[i])]
+            u_dev += [float(w0[i]), float(w1[i])]
+            hint[r], u0[r], lam_hint[r] = u1 - u0[r], u1, lams[i]
             if len(kappa) + (2 if u1 < 1.0 else 0) > max_arcs[r] or not u1 > s[-3]:
                 failed[r] = True
 
