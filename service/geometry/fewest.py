@@ -233,7 +233,9 @@ def fewest_batch(
     k, m = canonical.coefficients(theta)
     scale = np.array([spirals[j].a for j in todo], dtype=np.float64)
     limit = np.array([min(max_segments, counts[j]) for j in todo], dtype=np.intp)
-    chains = fewest_chains(k, m, target[todo] / scale, limit)
+    # Subdivide's first biarc is one of Sabin's family: the first piece reaches at least as far.
+    first_span = np.array([baseline[j].columns.u_end[1] for j in todo])  # type: ignore[union-attr]
+    chains = fewest_chains(k, m, target[todo] / scale, limit, first_span)
     won = [
         (j, chain)
         for j, chain in zip(todo, chains, strict=True)
@@ -367,6 +369,24 @@ def _crossing(rnd: _Round, u_top: FloatArray, screen_tol: FloatArray) -> FloatAr
     return result
 
 
+def _first_scan(u0: FloatArray, floor: FloatArray) -> FloatArray:
+    """The geometric scan ``u0 + (1 − u0)·2^(−j/2)`` of rows whose longest first piece is known
+    to reach ``floor`` (``subdivide``'s first biarc, which is one of Sabin's family): values
+    more than two octaves below it can be no longest fit, so the grid stops there for the row
+    that needs most, and a row's values below its own cut repeat the cut (the same candidate,
+    which changes no choice: its results do not depend on the other rows). ``floor = u0``
+    means unknown: the whole grid."""
+    span = 1.0 - u0
+    cut = u0 + (floor - u0) * 0.25
+    with np.errstate(divide="ignore"):
+        need = np.ceil(2.0 * np.log2(span / (cut - u0))) + 1.0
+    width = int(min(U_STEPS, need.max(initial=0.0)))
+    grid = u0[:, None] + span[:, None] * _U_STEP_GRID[None, :width]
+    grid[:, 0] = 1.0
+    result: FloatArray = np.maximum(grid, cut[:, None])
+    return result
+
+
 def _above(grid: FloatArray | None, u: float) -> float:
     if grid is None:
         return np.inf
@@ -381,14 +401,15 @@ def _search_many(
     screen_tol: FloatArray,
     hint: FloatArray,
     lam_hint: FloatArray,
+    floor: FloatArray,
 ) -> tuple[BoolArray, SabinBiarcs, tuple[FloatArray, ...]]:
     """From each row's ``u0`` (own spiral, tolerance, previous span ``hint`` and join parameter
     ``lam_hint``), the verified biarc reaching the largest ``u1`` found: a first grid around
-    the hints (or a geometric grid over ``(u0, 1]`` and all ``λ``), refining rounds, then the
-    proof of the best candidates."""
+    the hints (or a geometric grid over ``(u0, 1]`` and all ``λ``, cut below ``floor``, see
+    :func:`_first_scan`), refining rounds, then the proof of the best candidates."""
     n = k.size
     if n == 1 and SEARCH_ONE_IN_FLOATS:
-        return _search_one(k, m, u0, tol, screen_tol, hint, lam_hint)
+        return _search_one(k, m, u0, tol, screen_tol, hint, lam_hint, floor)
     hint, lam_hint = hint.copy(), lam_hint.copy()
     span = 1.0 - u0
     full = u0[:, None] + span[:, None] * _U_STEP_GRID[None, :]
@@ -439,8 +460,9 @@ def _search_many(
         reach_end(ends, _evaluate(k[ends], m[ends], u0[ends], ones, lam_end, screen_tol[ends]))
     fresh = np.flatnonzero(hint <= 0.0)
     if fresh.size:
+        grid = _first_scan(u0[fresh], floor[fresh])
         at_end, scanned = _evaluate_with_end(
-            k[fresh], m[fresh], u0[fresh], full[fresh], lam_scan[fresh], screen_tol[fresh]
+            k[fresh], m[fresh], u0[fresh], grid, lam_scan[fresh], screen_tol[fresh]
         )
         rest = ~reach_end(fresh, at_end)
     # Rows without a hint scan the geometric grid with a few join parameters; the bracket of
@@ -531,6 +553,7 @@ def _search_one(
     screen_tol: FloatArray,
     hint: FloatArray,
     lam_hint: FloatArray,
+    floor: FloatArray,
 ) -> tuple[BoolArray, SabinBiarcs, tuple[FloatArray, ...]]:
     """:func:`_search_many` of one row, its bookkeeping in floats (:func:`_top_one`,
     :func:`_crossing_one`): the same rounds, the same numbers (each round's arrays are
@@ -571,13 +594,12 @@ def _search_one(
         ones = np.ones((1, 1))
         reach_end(_evaluate(k, m, u0, ones, _END_LAMBDA_GRID[None, :], screen_tol))
     elif h <= 0.0:
-        at_end, scanned = _evaluate_with_end(
-            k, m, u0, full[None, :], _SCAN_LAMBDA_GRID[None, :], screen_tol
-        )
+        grid = _first_scan(u0, floor)
+        at_end, scanned = _evaluate_with_end(k, m, u0, grid, _SCAN_LAMBDA_GRID[None, :], screen_tol)
         reach_end(at_end)
     scan = not hinted and not has
     if scan:
-        first(full, _SCAN_LAMBDA_GRID, SCAN_WIDTH, scanned)
+        first(full if scanned is None else scanned.grid[0], _SCAN_LAMBDA_GRID, SCAN_WIDTH, scanned)
     hinted = hinted and not has
     if scan:
         h = (u_top - start) * 2.0**0.25 if has else 0.0
@@ -762,7 +784,11 @@ def _verify_lazily(
 
 
 def fewest_chains(
-    k: FloatArray, m: FloatArray, tol: FloatArray, max_arcs: npt.NDArray[np.intp]
+    k: FloatArray,
+    m: FloatArray,
+    tol: FloatArray,
+    max_arcs: npt.NDArray[np.intp],
+    first_span: FloatArray | None = None,
 ) -> list[Chain | None]:
     """Greedy longest verified biarcs over ``[0, 1]`` for each spiral, then the tail merge.
 
@@ -784,6 +810,7 @@ def fewest_chains(
     parts: list[list[list[float]]] = [[[0.0], [0.0], [0.0], [], [0.0], [], []] for _ in range(n)]
     failed = np.zeros(n, dtype=bool)
     u0, hint, lam_hint = np.zeros(n), np.zeros(n), np.full(n, 0.5)
+    floor = np.zeros(n) if first_span is None else first_span
     jacobian = np.tile(np.array(NEWTON_JACOBIAN), (n, 1, 1))
     # Per row: the arc counts before each biarc that ended near the spiral's end, not yet
     # tried as a triarc's start (a batch tries them after the walk), and the last one tried.
@@ -859,6 +886,7 @@ def fewest_chains(
                 factor * tol[pending],
                 hint[pending],
                 lam_hint[pending],
+                floor[pending],
             )
             record(pending, found, b, devs)
             pending = pending[~found]

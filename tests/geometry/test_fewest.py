@@ -390,3 +390,66 @@ def test_one_rows_round_bookkeeping_is_numpys() -> None:
         if has[0]:
             want = fewest._crossing(rnd, top_u, np.array([target]))[0]
             assert fewest._crossing_one(rnd, float(top_u[0]), target) == want
+
+
+def test_the_first_scan_stops_two_octaves_below_subdivides_first_biarc() -> None:
+    from service.geometry import fewest
+
+    u0 = np.array([0.0, 0.0, 0.2])
+    floor = np.array([0.5, 0.01, 0.2])  # the last row: unknown (floor = u0), the whole grid
+    grid = fewest._first_scan(u0, floor)
+    assert grid.shape[1] == fewest.U_STEPS
+    np.testing.assert_array_equal(grid[2], np.r_[1.0, 0.2 + 0.8 * fewest._U_STEP_GRID[1:]])
+    cut = u0[:2] + (floor[:2] - u0[:2]) / 4
+    alone = fewest._first_scan(u0[:2], floor[:2])
+    assert alone.shape[1] < fewest.U_STEPS
+    assert np.all(alone[:, -1] <= cut)  # each row reaches its cut
+    for row in range(2):
+        full = u0[row] + (1 - u0[row]) * fewest._U_STEP_GRID[: alone.shape[1]]
+        full[0] = 1.0
+        np.testing.assert_array_equal(alone[row], np.maximum(full, cut[row]))
+    np.testing.assert_array_equal(grid[:2, : alone.shape[1]], alone)
+
+
+def test_subdivides_first_biarc_cuts_no_longest_first_piece(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    # The first scan cut two octaves below subdivide's first biarc finds the chains of the
+    # whole scan.
+    from service.geometry import fewest
+
+    widths: list[int] = []
+    real = fewest._evaluate_with_end
+
+    def spy(*args):  # type: ignore[no-untyped-def]
+        widths.append(args[3].shape[1])
+        return real(*args)
+
+    monkeypatch.setattr(fewest, "_evaluate_with_end", spy)
+
+    rng = np.random.default_rng(8)
+    spirals, tolerances = [], []
+    for _ in range(12):
+        spirals.append(
+            Spiral.from_parameters(
+                start=(0.0, 0.0),
+                start_tangent=(1.0, 0.0),
+                turn_angle_deg=float(rng.uniform(2.0, 88.0)),
+                end_curvature=float(10 ** rng.uniform(-2.0, 1.0)),
+            )
+        )
+        tolerances.append(spirals[-1].chord * 10 ** float(rng.uniform(-6.0, -1.5)))
+    subdivided = approximate_many(spirals, tolerances)
+    theta = np.array([s.turn_angle_rad for s in spirals])
+    k, m = 1.2 * np.cos(theta) ** 2 - 1.0, 1.2 * np.cos(theta) * np.sin(theta)
+    tol = np.array(tolerances) / np.array([s.a for s in spirals])
+    first = np.array([s.columns.u_end[1] for s in subdivided])  # type: ignore[union-attr]
+    limit = np.full(12, 500)
+    cut = fewest.fewest_chains(k, m, tol, limit, first)
+    whole = fewest.fewest_chains(k, m, tol, limit)
+    assert widths[0] < widths[-1] == fewest.U_STEPS
+    for a, b in zip(cut, whole, strict=True):
+        assert a is not None
+        assert b is not None
+        for name in a.__slots__:
+            np.testing.assert_array_equal(getattr(a, name), getattr(b, name))
