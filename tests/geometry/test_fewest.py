@@ -358,7 +358,8 @@ def test_one_rows_search_in_floats_is_the_array_result(
         hint = np.array([float(rng.choice([0.0, 0.05, 0.3, 0.7, 1.5])) * span])
         tol = np.array([10 ** float(rng.uniform(-6.0, -1.0))])
         lam = np.array([float(rng.uniform(0.2, 0.8))])
-        args = (k, m, u0, tol, 0.999 * tol, hint, lam)
+        floor = u0 + span * float(rng.choice([0.0, 0.02, 0.2]))  # u0: unknown
+        args = (k, m, u0, tol, 0.999 * tol, hint, lam, floor)
         monkeypatch.setattr(fewest, "SEARCH_ONE_IN_FLOATS", True)
         fast = fewest._search_many(*args)
         monkeypatch.setattr(fewest, "SEARCH_ONE_IN_FLOATS", False)
