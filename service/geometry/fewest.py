@@ -387,12 +387,6 @@ def _first_scan(u0: FloatArray, floor: FloatArray) -> FloatArray:
     return result
 
 
-def _above(grid: FloatArray | None, u: float) -> float:
-    if grid is None:
-        return np.inf
-    return float(np.where(grid > u, grid, np.inf).min())
-
-
 def _search_many(
     k: FloatArray,
     m: FloatArray,
@@ -426,7 +420,14 @@ def _search_many(
 
     u_top, lam_top, has = np.zeros(n), np.full(n, 0.5), np.zeros(n, dtype=bool)
     width = np.full(n, 1.0 / LAMBDAS)
-    grid_of: list[FloatArray | None] = [None] * n
+    # Every u1 each row has tried (NaN pads the rows a round left out).
+    tried = np.empty((n, 0))
+
+    def note(rows: npt.NDArray[np.intp], grid: FloatArray) -> None:
+        nonlocal tried
+        more = np.full((n, grid.shape[1]), np.nan)
+        more[rows] = grid
+        tried = np.concatenate([tried, more], axis=1)
 
     def take(rows: npt.NDArray[np.intp], rnd: _Round, w: float) -> None:
         if rows.size == 0:
@@ -436,9 +437,7 @@ def _search_many(
         better = ok & (~has[rows] | (top_u > u_top[rows]))
         up = rows[better]
         u_top[up], lam_top[up], has[up], width[up] = top_u[better], top_l[better], True, w
-        for j, row in enumerate(rows.tolist()):
-            seen = grid_of[row]
-            grid_of[row] = rnd.grid[j] if seen is None else np.concatenate([seen, rnd.grid[j]])
+        note(rows, rnd.grid)
 
     def first(rows: npt.NDArray[np.intp], grid: FloatArray, lams: FloatArray, w: float) -> None:
         if rows.size:
@@ -506,9 +505,8 @@ def _search_many(
         if rows.size == 0:
             break
         # The next value above the longest fit among all tried (grids differ between rows).
-        above = np.array(
-            [_above(grid_of[r], float(u_top[r])) for r in rows.tolist()], dtype=np.float64
-        )
+        seen = tried[rows]
+        above = np.where(seen > u_top[rows, None], seen, np.inf).min(axis=1, initial=np.inf)
         hi = np.where(np.isfinite(above), above, 1.0)
         grid = u_top[rows, None] + (hi - u_top[rows])[:, None] * steps[None, :]
         lams = np.clip(
@@ -522,8 +520,7 @@ def _search_many(
         keep = rows[ok]
         u_top[keep], lam_top[keep] = top_u[ok], top_l[ok]
         u_star[keep] = _crossing(rnd, top_u, screen_tol[rows])[ok]
-        for j, row in enumerate(rows.tolist()):
-            grid_of[row] = np.concatenate([grid_of[row], grid[j]])
+        note(rows, grid)
         refining[rows] = ok & (top_u < 1.0)
         width[rows] *= 2.0 / (REFINE_LAMBDAS - 1)
 
