@@ -90,7 +90,10 @@ def sabin_biarcs(
         kappa1 = 2.0 * np.sin(0.5 * (phi1 - psi)) / len1
     gx, gy = ax + len0 * c0, ay + len0 * s0
     ok = (len0 > 0.0) & (len1 > 0.0) & np.isfinite(kappa0) & np.isfinite(kappa1)
-    split = joint_split(k, m, gx, gy, psi) if exact else split_guess(k, m, gx, gy, psi, u0, u1)
+    if exact:
+        split = joint_split(k, m, gx, gy, psi)
+    else:
+        split = split_guess(k, m, gx, gy, np.cos(psi), np.sin(psi), u0, u1)
     ok &= (split > u0) & (split < u1)
     return SabinBiarcs(u1, lam, phi0, psi, phi1, kappa0, kappa1, gx, gy, split, ok)
 

@@ -175,15 +175,15 @@ def split_guess(
     m: FloatArray,
     gx: FloatArray,
     gy: FloatArray,
-    psi: FloatArray,
+    tx: FloatArray,
+    ty: FloatArray,
     u0: FloatArray,
     u1: FloatArray,
     start: FloatArray | None = None,
 ) -> FloatArray:
-    """Screening's split parameter of a joint: plain Newton steps on ``(Q(s) − G)·T`` from the
-    piece's middle or ``start`` (the proof recomputes it with :func:`joint_split`); NaN if it
-    leaves the piece ``(u0, u1)``."""
-    tx, ty = np.cos(psi), np.sin(psi)
+    """Screening's split parameter of a joint of direction ``T = (tx, ty)``: plain Newton steps
+    on ``(Q(s) − G)·T`` from the piece's middle or ``start`` (the proof recomputes it with
+    :func:`joint_split`); NaN if it leaves the piece ``(u0, u1)``."""
     # (Q(s) − G)·T = a·s³ + 3·t_x·s − G·T with a = k·t_x + m·t_y: a few operations a step.
     a = k * tx + m * ty
     b = 3.0 * tx

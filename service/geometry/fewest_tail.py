@@ -98,10 +98,27 @@ def _triarcs(
 ) -> Triarc:
     """Candidate triarcs, one per element (all arguments of the same shape); ``exact=False``
     (screening) guesses the joints' split parameters by a few Newton steps."""
+    return _directed_triarcs(k, m, ua, v, delta, lam, exact)[0]
+
+
+def _directed_triarcs(
+    k: FloatArray,
+    m: FloatArray,
+    ua: FloatArray,
+    v: FloatArray,
+    delta: FloatArray,
+    lam: FloatArray,
+    exact: bool,
+) -> tuple[Triarc, FloatArray, FloatArray]:
+    """:func:`_triarcs`, with the cosines and sines of the three arcs' start directions
+    (``(N, 3)``, for screening). The arguments broadcast: a row's own values (``k``, ``m``,
+    ``ua`` of shape ``(n, 1)``) are computed once for its candidates (``(n, G)``); the result
+    has one element per candidate, row after row."""
     ax, ay = canonical.point(k, m, ua)
     phi_a = canonical.direction_rad(k, m, ua * ua)
-    phi_b = canonical.direction_rad(k, m, np.ones_like(k))
-    bx, by = canonical.point(k, m, np.ones_like(k))
+    one = np.ones_like(k)
+    phi_b = canonical.direction_rad(k, m, one)
+    bx, by = canonical.point(k, m, one)
     tv = canonical.direction_rad(k, m, v * v)
     nx, ny = -np.sin(tv), np.cos(tv)
     ox, oy = canonical.offset(k, m, ua, v)
@@ -117,44 +134,57 @@ def _triarcs(
     psi2 = chi - beta + lam * (alpha + beta)
     h0, h1 = 0.5 * (psi1 + psi2), 0.5 * (psi2 + phi_b)
     den = np.sin(0.5 * (phi_b - psi1))
+    c0, s0 = np.cos(h0), np.sin(h0)
     with np.errstate(divide="ignore", invalid="ignore"):
         len0 = (dx * np.sin(h1) - dy * np.cos(h1)) / den
-        len1 = (np.cos(h0) * dy - np.sin(h0) * dx) / den
+        len1 = (c0 * dy - s0 * dx) / den
         kappa1 = 2.0 * np.sin(0.5 * (psi2 - psi1)) / len0
         kappa2 = 2.0 * np.sin(0.5 * (phi_b - psi2)) / len1
-    gx, gy = jx + len0 * np.cos(h0), jy + len0 * np.sin(h0)
+    gx, gy = jx + len0 * c0, jy + len0 * s0
+    cos1, sin1, cos2, sin2 = np.cos(psi1), np.sin(psi1), np.cos(psi2), np.sin(psi2)
     if exact:
         s1 = joint_split(k, m, jx, jy, psi1)
         s2 = joint_split(k, m, gx, gy, psi2)
     else:
-        one = np.ones_like(k)
-        s1 = split_guess(k, m, jx, jy, psi1, ua, one, start=v)
-        s2 = split_guess(k, m, gx, gy, psi2, ua, one)
+        s1 = split_guess(k, m, jx, jy, cos1, sin1, ua, one, start=v)
+        s2 = split_guess(k, m, gx, gy, cos2, sin2, ua, one)
     ok = (den > 0.0) & (len0 > 0.0) & (len1 > 0.0) & (s1 > ua) & (s2 > s1) & (s2 < 1.0)
     ok &= np.isfinite(kappa1) & np.isfinite(kappa2)
-    return Triarc(
-        x=np.stack([ax, jx, gx, bx], axis=1),
-        y=np.stack([ay, jy, gy, by], axis=1),
-        phi=np.stack([phi_a, psi1, psi2, phi_b], axis=1),
-        kappa=np.stack([kappa0, kappa1, kappa2], axis=1),
-        s=np.stack([ua, s1, s2, np.ones_like(k)], axis=1),
-        ok=ok,
+    shape = np.broadcast_shapes(k.shape, v.shape)
+
+    def joined(*parts: FloatArray) -> FloatArray:
+        out = np.empty((*shape, len(parts)))
+        for j, part in enumerate(parts):
+            out[..., j] = part
+        return out.reshape(-1, len(parts))
+
+    triarc = Triarc(
+        x=joined(ax, jx, gx, bx),
+        y=joined(ay, jy, gy, by),
+        phi=joined(phi_a, psi1, psi2, phi_b),
+        kappa=joined(kappa0, kappa1, kappa2),
+        s=joined(ua, s1, s2, one),
+        ok=ok.ravel(),
     )
+    return triarc, joined(np.cos(phi_a), cos1, cos2), joined(np.sin(phi_a), sin1, sin2)
 
 
-def _screen(k: FloatArray, m: FloatArray, t: Triarc, samples: FloatArray) -> FloatArray:
-    with np.errstate(invalid="ignore", divide="ignore"):  # invalid candidates: masked as inf
-        return _sampled(k, m, t, samples)
-
-
-def _sampled(k: FloatArray, m: FloatArray, t: Triarc, samples: FloatArray) -> FloatArray:
+def _sampled(
+    k: FloatArray,
+    m: FloatArray,
+    t: Triarc,
+    cos_phi: FloatArray,
+    sin_phi: FloatArray,
+    samples: FloatArray,
+) -> FloatArray:
+    """Largest sampled radial distance of each candidate (inf if invalid)."""
     s = np.where(t.ok[:, None], t.s, np.linspace(0.0, 1.0, 4)[None, :])
     worst = np.zeros(t.ok.shape[0])
     # Samples on the first axis, for numpy's fast maximum over it (see fewest._screen_grid).
     for i in range(3):
         u = s[:, i] + (s[:, i + 1] - s[:, i]) * samples[:, None]
         e = screen_radial(
-            k, m, t.x[:, i], t.y[:, i], -np.sin(t.phi[:, i]), np.cos(t.phi[:, i]), t.kappa[:, i], u
+            k, m, t.x[:, i], t.y[:, i], -sin_phi[:, i], cos_phi[:, i], t.kappa[:, i], u
         )
         worst = np.maximum(worst, e.max(axis=0))
     return np.where(t.ok, worst, np.inf)
@@ -165,12 +195,15 @@ def _build(
 ) -> tuple[Triarc, FloatArray]:
     """Triarcs and scores of candidates ``grid`` (rows, G, 3) = (v, δ, λ) for each row."""
     g = grid.shape[1]
-    kk, mm, aa = (np.repeat(x, g) for x in (k, m, ua))
+    row = (slice(None), None)
+    # Invalid candidates come out non-finite: masked as inf.
     with np.errstate(invalid="ignore", divide="ignore"):
-        t = _triarcs(
-            kk, mm, aa, grid[..., 0].ravel(), grid[..., 1].ravel(), grid[..., 2].ravel(), False
+        t, cos_phi, sin_phi = _directed_triarcs(
+            k[row], m[row], ua[row], grid[..., 0], grid[..., 1], grid[..., 2], False
         )
-    return t, _screen(kk, mm, t, samples).reshape(-1, g)
+        kk, mm = np.repeat(k, g), np.repeat(m, g)
+        score = _sampled(kk, mm, t, cos_phi, sin_phi, samples)
+    return t, score.reshape(-1, g)
 
 
 def best_triarcs(
