@@ -56,8 +56,13 @@ def newton(fn: ValueAndSlope, lo: float, hi: float, start: float) -> float:
     """``bracketed_newton`` for one element: plain steps, then the safeguarded iteration."""
     resolution = RESOLUTION_ULPS * _EPS * max(abs(lo), abs(hi))
     x = _minimum(_maximum(start, lo), hi)
+    isfinite = math.isfinite
+    step = math.nan
     for _ in range(FIXED_ITERATIONS):
-        step = _step(*fn(x))
+        value, slope = fn(x)
+        if slope == 0.0 or not (isfinite(value) and isfinite(slope)):
+            raise HandBackError
+        step = value / slope
         x = x - step
     done = abs(step) <= resolution
     for _ in range(FAST_ITERATIONS - FIXED_ITERATIONS):
@@ -110,6 +115,34 @@ def _horner(c: list[float], x: float) -> float:
     for cj in c[-2::-1]:
         result = result * x + cj
     return result
+
+
+def _value_and_slope(c: list[float], dc: list[float]) -> ValueAndSlope:
+    """``(_horner(c, x), _horner(dc, x))`` written out for the cascade's degrees (the same
+    operations in the same order, without the loop: this runs at every Newton step)."""
+    if len(c) == 3 and len(dc) == 2:
+        c0, c1, c2 = c
+        d0, d1 = dc
+        return lambda x: ((c2 * x + c1) * x + c0, d1 * x + d0)
+    if len(c) == 4 and len(dc) == 3:
+        c0, c1, c2, c3 = c
+        d0, d1, d2 = dc
+        return lambda x: (((c3 * x + c2) * x + c1) * x + c0, (d2 * x + d1) * x + d0)
+    if len(c) == 5 and len(dc) == 4:
+        c0, c1, c2, c3, c4 = c
+        d0, d1, d2, d3 = dc
+        return lambda x: (
+            (((c4 * x + c3) * x + c2) * x + c1) * x + c0,
+            ((d3 * x + d2) * x + d1) * x + d0,
+        )
+    if len(c) == 6 and len(dc) == 5:
+        c0, c1, c2, c3, c4, c5 = c
+        d0, d1, d2, d3, d4 = dc
+        return lambda x: (
+            ((((c5 * x + c4) * x + c3) * x + c2) * x + c1) * x + c0,
+            (((d4 * x + d3) * x + d2) * x + d1) * x + d0,
+        )
+    return lambda x: (_horner(c, x), _horner(dc, x))
 
 
 def is_graph(
@@ -223,7 +256,8 @@ def _cascade_roots(
     points = [lo, hi]
     for level in (3, 2, 1, 0):
         c = derivatives[level]
-        f = [_horner(c, p) for p in points]
+        value = _value_and_slope(c, derivatives[level + 1])
+        f = [value(p)[0] for p in points]
         roots = []
         for a, b, fa, fb in zip(points, points[1:], f, f[1:], strict=False):
             if not ((fa < 0.0 and fb > 0.0) or (fa > 0.0 and fb < 0.0)):
@@ -234,12 +268,7 @@ def _cascade_roots(
                     raise HandBackError
                 root = min(max(math.sqrt(ratio), a), b)
             else:
-                dc = derivatives[level + 1]
-
-                def fn(x: float, c: list[float] = c, dc: list[float] = dc) -> tuple[float, float]:
-                    return _horner(c, x), _horner(dc, x)
-
-                root = newton(fn, a, b, a + (b - a) * fa / (fa - fb))
+                root = newton(value, a, b, a + (b - a) * fa / (fa - fb))
             if math.isnan(root):
                 raise HandBackError
             roots.append(root)
