@@ -856,11 +856,17 @@ def fewest_chains(
 
     active = np.arange(n)
     while active.size:
-        pending = active
-        # Far from the spiral's end, Newton's method from the previous piece comes first.
-        far = u0[pending] + hint[pending] * NEWTON_REACH < 1.0
-        newton = pending[(hint[pending] > 0.0) & far]
-        if newton.size:
+        # Far from the spiral's end, Newton's method from the previous piece comes first, step
+        # after step while the row stays far (its steps do not wait for other rows' searches,
+        # which then run together). A row whose Newton step misses is searched; one whose
+        # steps end near the spiral's end is searched in the next round, after the check
+        # for the tail merge below: each row's own sequence of steps is the same either way.
+        pending, walking = active, active
+        while walking.size:
+            far = u0[walking] + hint[walking] * NEWTON_REACH < 1.0
+            newton = walking[(hint[walking] > 0.0) & far]
+            if newton.size == 0:
+                break
             found, b, devs, jacobian[newton] = newton_step(
                 k[newton],
                 m[newton],
@@ -871,7 +877,8 @@ def fewest_chains(
                 jacobian[newton],
             )
             record(newton, found, b, devs)
-            pending = np.setdiff1d(pending, newton[found], assume_unique=True)
+            walking = newton[found & ~failed[newton]]
+            pending = np.union1d(np.setdiff1d(pending, newton[found]), newton[~found])
         for factor in SCREEN_FACTORS:
             if pending.size == 0:
                 break
