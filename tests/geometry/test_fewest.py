@@ -454,3 +454,37 @@ def test_subdivides_first_biarc_cuts_no_longest_first_piece(
         assert b is not None
         for name in a.__slots__:
             np.testing.assert_array_equal(getattr(a, name), getattr(b, name))
+
+
+def test_a_newton_miss_after_steps_in_the_same_round_is_searched(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    # Rows far from the end take Newton steps one after another within a round; a step that
+    # misses (here every third call, forced) must be searched next, from the same start, and
+    # the chain stays within the tolerance (independent oracle).
+    from service.geometry import fewest
+
+    real_newton, real_search = fewest.newton_step, fewest._search_many
+    events: list[tuple[str, list[float]]] = []
+
+    def every_third_misses(*args):  # type: ignore[no-untyped-def]
+        found, b, devs, jac = real_newton(*args)
+        if len(events) % 3 == 2:
+            found = np.zeros_like(found)
+        events.append(("newton", args[2][~found].tolist()))
+        return found, b, devs, jac
+
+    def search(*args):  # type: ignore[no-untyped-def]
+        events.append(("search", args[2].tolist()))
+        return real_search(*args)
+
+    monkeypatch.setattr(fewest, "newton_step", every_third_misses)
+    monkeypatch.setattr(fewest, "_search_many", search)
+    spiral = Spiral.from_parameters(**PAPER, end_curvature=0.41574)
+    spline = approximate(spiral, 1e-5, "fewest-arcs")
+    misses = [(i, u) for i, (kind, us) in enumerate(events) if kind == "newton" for u in us]
+    assert len(misses) >= 3
+    for i, u in misses:
+        assert events[i + 1] == ("search", [u])  # searched next, from where the miss started
+    verdict = oracle.check(np.asarray(spiral.control_points), spline, 1e-5, 60_000)
+    assert not verdict.violations, verdict.describe()
