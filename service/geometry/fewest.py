@@ -861,7 +861,8 @@ def fewest_chains(
         # which then run together). A row whose Newton step misses is searched; one whose
         # steps end near the spiral's end is searched in the next round, after the check
         # for the tail merge below: each row's own sequence of steps is the same either way.
-        pending, walking = active, active
+        stepped = np.zeros(n, dtype=bool)  # the row's last Newton step this round was found
+        walking = active
         while walking.size:
             far = u0[walking] + hint[walking] * NEWTON_REACH < 1.0
             newton = walking[(hint[walking] > 0.0) & far]
@@ -877,8 +878,9 @@ def fewest_chains(
                 jacobian[newton],
             )
             record(newton, found, b, devs)
+            stepped[newton] = found
             walking = newton[found & ~failed[newton]]
-            pending = np.union1d(np.setdiff1d(pending, newton[found]), newton[~found])
+        pending = active[~stepped[active]]
         for factor in SCREEN_FACTORS:
             if pending.size == 0:
                 break
