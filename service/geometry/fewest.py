@@ -234,7 +234,7 @@ def fewest_batch(
     scale = np.array([spirals[j].a for j in todo], dtype=np.float64)
     limit = np.array([min(max_segments, counts[j]) for j in todo], dtype=np.intp)
     # Subdivide's first biarc is one of Sabin's family: the first piece reaches at least as far.
-    first_span = np.array([baseline[j].columns.u_end[1] for j in todo])  # type: ignore[union-attr]
+    first_span = np.array([baseline[j].u_end(1) for j in todo])  # type: ignore[union-attr]
     chains = fewest_chains(k, m, target[todo] / scale, limit, first_span)
     won = [
         (j, chain)

@@ -275,6 +275,14 @@ class ArcSpline:
                 self._columns = self._batch.rows(self._begin, self._end)
         return self._columns
 
+    def u_end(self, i: int) -> float:
+        """The spiral parameter where segment ``i`` ends, read where it is kept (no columns
+        or values made for one number)."""
+        if self._values is not None:
+            return self._values[i][9]
+        assert self._batch is not None
+        return float(self._batch.u_end[self._begin + i])
+
     def values(self) -> list[SegmentValues]:
         """The segments as plain Python values (``SegmentValues``), in order."""
         if self._values is not None:

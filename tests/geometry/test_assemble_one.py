@@ -166,3 +166,10 @@ def test_a_batch_spline_keeps_no_plain_values() -> None:
     assert batch.values() is not batch.values()
     assert one is not None
     assert one.values() is one.values()  # the float assembly's own storage
+
+
+def test_a_segments_end_parameter_is_read_where_it_is_kept() -> None:
+    batch, one = _both(PAPER, 1e-3)
+    assert one is not None
+    for spline in (batch, one):
+        assert [spline.u_end(i) for i in range(len(spline))] == spline.columns.u_end.tolist()
