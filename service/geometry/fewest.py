@@ -13,8 +13,9 @@ one-parameter family between ``(A0, T(u0))`` and ``(Q(u1), T(u1))`` stays within
 samples per arc (an estimate from below of the deviation; it only discards candidates). Spans
 and join parameters change slowly along a spiral, so each step starts from the previous one:
 a grid of ``u1`` within ±0.4 octave of the previous span against ``λ`` within ±0.12 of the
-previous ``λ`` (the first piece scans a half-octave grid over ``(u0, 1]`` with three ``λ``, and
-a piece to the spiral's end gets a finer ``λ`` scan because it ends the walk). Two rounds then
+previous ``λ`` (the first piece scans a half-octave grid over ``(u0, 1]`` with three ``λ``, down
+to two octaves below ``subdivide``'s first biarc, and a piece to the spiral's end gets a finer
+``λ`` scan because it ends the walk). Two rounds then
 refine the bracket between the longest fit and the next value tried, with ``λ`` narrowing
 around the best, and the screened deviations either side of the boundary are interpolated to
 where they reach the target. Only then is anything proven: the interpolated end, the longest
@@ -33,7 +34,8 @@ times), a step first tries :mod:`service.geometry.fewest_newton`: Newton's metho
 each iterate measured exactly by the same proof, with Broyden's update of a Jacobian carried
 along the walk — two exact evaluations a step on the paper's example at 1e-5, against three
 screening grids and a proof; one spiral's step runs in floats. A row it leaves (no proven
-iterate near the tolerance) takes the grids above.
+iterate near the tolerance) takes the grids above. Rows take Newton steps one after another
+while they stay far from the end, so that a batch's searches run together.
 
 **Tail merge.** Greedy longest pieces leave a short last biarc; the last two biarcs are then
 replaced by three arcs whose first joint lies off the spiral, when such a "triarc" is proven
@@ -43,7 +45,9 @@ The triarc needs only the start of the last-but-one biarc, so it is tried as soo
 ends near the spiral's end (:func:`fewest_chains`): one spiral then skips its last step.
 
 **Batches.** :func:`fewest_chains` walks all spirals of a batch in lockstep: every greedy step
-of every spiral is one set of numpy operations, as in :mod:`service.geometry.subdivide`.
+of every spiral is one set of numpy operations, as in :mod:`service.geometry.subdivide`; one
+spiral's search and proofs keep their bookkeeping in floats (:func:`_search_one`). Either way
+a spiral's chain is the same, bit for bit, whatever else is in its batch.
 
 The caller (:func:`fewest_batch`) compares with ``subdivide`` and keeps whichever has fewer
 segments (``subdivide`` only where the walk fails or needs more), so the count is never above the
