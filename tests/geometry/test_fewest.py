@@ -7,6 +7,7 @@ Bézier evaluation, exact point-to-arc distances, dense two-sided sampling), not
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 import pytest
@@ -214,6 +215,16 @@ def _paper_canonical(tolerance: float) -> tuple[np.ndarray, np.ndarray, np.ndarr
     return k, m, np.array([tolerance / spiral.a])
 
 
+def _assert_same_chains(got: list[Any], want: list[Any]) -> None:
+    """Both lists hold chains (none failed), equal element for element."""
+    assert len(got) == len(want)
+    for a, b in zip(got, want, strict=True):
+        assert a is not None
+        assert b is not None
+        for name in a.__slots__:
+            np.testing.assert_array_equal(getattr(a, name), getattr(b, name))
+
+
 def test_newton_steps_are_proven_and_reach_the_tolerance(monkeypatch: pytest.MonkeyPatch) -> None:
     # Every arc of the chain, measured here from scratch (radial distance of 4000 samples of
     # its spiral piece to its circle), is within the tolerance; the pieces that Newton's step
@@ -266,11 +277,7 @@ def test_a_newton_miss_leaves_the_grid_search_its_row(monkeypatch: pytest.Monkey
     missed = fewest.fewest_chains(k, m, tol, limit)
     monkeypatch.setattr(fewest, "NEWTON_REACH", 1e9)
     grids = fewest.fewest_chains(k, m, tol, limit)
-    for a, b in zip(missed, grids, strict=True):
-        assert a is not None
-        assert b is not None
-        for name in a.__slots__:
-            np.testing.assert_array_equal(getattr(a, name), getattr(b, name))
+    _assert_same_chains(missed, grids)
 
 
 def test_a_single_walk_closes_early_with_the_chains_a_batch_closes_after(
@@ -305,12 +312,9 @@ def test_a_single_walk_closes_early_with_the_chains_a_batch_closes_after(
     assert calls[0] > 10  # some rows with several points
     shorter = 0
     for i, chain in enumerate(batch):
-        (single,) = fewest.fewest_chains(k[i : i + 1], m[i : i + 1], tol[i : i + 1], limit[:1])
-        assert chain is not None
-        assert single is not None
-        for name in chain.__slots__:
-            np.testing.assert_array_equal(getattr(chain, name), getattr(single, name))
-        shorter += chain.kappa.size < usual[i]
+        single = fewest.fewest_chains(k[i : i + 1], m[i : i + 1], tol[i : i + 1], limit[:1])
+        _assert_same_chains([chain], single)
+        shorter += chain.kappa.size < usual[i]  # type: ignore[union-attr]
     assert shorter >= 2
 
 
@@ -449,11 +453,7 @@ def test_subdivides_first_biarc_cuts_no_longest_first_piece(
     cut = fewest.fewest_chains(k, m, tol, limit, first)
     whole = fewest.fewest_chains(k, m, tol, limit)
     assert widths[0] < widths[-1] == fewest.U_STEPS
-    for a, b in zip(cut, whole, strict=True):
-        assert a is not None
-        assert b is not None
-        for name in a.__slots__:
-            np.testing.assert_array_equal(getattr(a, name), getattr(b, name))
+    _assert_same_chains(cut, whole)
 
 
 def test_a_newton_miss_after_steps_in_the_same_round_is_searched(
