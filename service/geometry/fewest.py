@@ -858,13 +858,25 @@ def fewest_chains(
                 part += piece.tolist()
             u0[r], closed[r], failed[r] = 1.0, True, False
 
+    def stepped_to(rows: npt.NDArray[np.intp]) -> npt.NDArray[np.intp]:
+        """After a step of each of ``rows``: where it ends within ``CLOSE_REACH`` of its span
+        from the spiral's end, the tail merge may start at the step's start (one spiral tries
+        it at once). The rows that walk on."""
+        rows = rows[~failed[rows] & (u0[rows] < 1.0)]
+        near = rows[u0[rows] + hint[rows] * CLOSE_REACH >= 1.0].tolist()
+        for r in near:
+            close_at[r].append(len(parts[r][3]) - 2)
+        if n == 1 and near:
+            close([(r, close_at[r].pop()) for r in near])
+        return rows[~closed[rows]]
+
     active = np.arange(n)
     while active.size:
         # Far from the spiral's end, Newton's method from the previous piece comes first, step
-        # after step while the row stays far (its steps do not wait for other rows' searches,
-        # which then run together). A row whose Newton step misses is searched; one whose
-        # steps end near the spiral's end is searched in the next round, after the check
-        # for the tail merge below: each row's own sequence of steps is the same either way.
+        # after step while the row stays far (a far step never ends near the end). Then one
+        # search for every row whose Newton step missed, that Newton's method does not take,
+        # or whose Newton steps have just brought it near the end: rows at different steps
+        # search together. Each row's own sequence of steps is the same either way.
         stepped = np.zeros(n, dtype=bool)  # the row's last Newton step this round was found
         walking = active
         while walking.size:
@@ -884,7 +896,9 @@ def fewest_chains(
             record(newton, found, b, devs)
             stepped[newton] = found
             walking = newton[found & ~failed[newton]]
-        pending = active[~stepped[active]]
+        ran = stepped_to(active[stepped[active]])
+        pending = np.sort(np.concatenate([active[~stepped[active]], ran]))
+        searched = []
         for factor in SCREEN_FACTORS:
             if pending.size == 0:
                 break
@@ -899,15 +913,10 @@ def fewest_chains(
                 floor[pending],
             )
             record(pending, found, b, devs)
+            searched.append(pending[found])
             pending = pending[~found]
         failed[pending] = True
-        active = active[~failed[active] & (u0[active] < 1.0)]
-        near = active[u0[active] + hint[active] * CLOSE_REACH >= 1.0].tolist()
-        for r in near:
-            close_at[r].append(len(parts[r][3]) - 2)
-        if n == 1 and near:
-            close([(r, close_at[r].pop()) for r in near])
-            active = active[~closed[active]]
+        active = stepped_to(np.sort(np.concatenate([np.empty(0, dtype=np.intp), *searched])))
     # What is left to try, in each row's order (all in one call): its points near the end,
     # then the merge of its last two biarcs (unless that was one of them).
     pairs = []
