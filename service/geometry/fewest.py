@@ -573,14 +573,15 @@ def _search_one(
         lams = np.clip(lam_h + _HINT_LAMBDA_GRID, LAMBDA_MARGIN, 1.0 - LAMBDA_MARGIN)
         return near, lams
 
-    def first(grid: FloatArray, lams: FloatArray, w: float, rnd: _Round | None = None) -> None:
+    def take(rnd: _Round, w: float) -> None:
         nonlocal u_top, lam_top, has, width
-        if rnd is None:
-            rnd = _evaluate(k, m, u0, grid[None, :], lams[None, :], screen_tol)
         top_u, top_l, ok = _top_one(rnd, target)
         if ok and (not has or top_u > u_top):
             u_top, lam_top, has, width = top_u, top_l, True, w
-        tried.extend(grid.tolist())
+        tried.extend(rnd.grid[0].tolist())
+
+    def first(grid: FloatArray, lams: FloatArray, w: float) -> None:
+        take(_evaluate(k, m, u0, grid[None, :], lams[None, :], screen_tol), w)
 
     def reach_end(rnd: _Round) -> bool:
         nonlocal u_top, lam_top, has
@@ -599,8 +600,10 @@ def _search_one(
         at_end, scanned = _evaluate_with_end(k, m, u0, grid, _SCAN_LAMBDA_GRID[None, :], screen_tol)
         reach_end(at_end)
     scan = not hinted and not has
-    if scan:
-        first(full if scanned is None else scanned.grid[0], _SCAN_LAMBDA_GRID, SCAN_WIDTH, scanned)
+    if scan and scanned is not None:
+        take(scanned, SCAN_WIDTH)
+    elif scan:
+        first(full, _SCAN_LAMBDA_GRID, SCAN_WIDTH)
     hinted = hinted and not has
     if scan:
         h = (u_top - start) * 2.0**0.25 if has else 0.0
