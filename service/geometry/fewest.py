@@ -237,7 +237,7 @@ def fewest_batch(
     k, m = canonical.coefficients(theta)
     scale = np.array([spirals[j].a for j in todo], dtype=np.float64)
     limit = np.array([min(max_segments, counts[j]) for j in todo], dtype=np.intp)
-    # Subdivide's first biarc is one of Sabin's family: the first piece reaches at least as far.
+    # Subdivide's first biarc is one of Sabin's family: some biarc reaches that far.
     first_span = np.array([baseline[j].u_end(1) for j in todo])  # type: ignore[union-attr]
     chains = fewest_chains(k, m, target[todo] / scale, limit, first_span)
     won = [
@@ -374,12 +374,13 @@ def _crossing(rnd: _Round, u_top: FloatArray, screen_tol: FloatArray) -> FloatAr
 
 
 def _first_scan(u0: FloatArray, floor: FloatArray) -> FloatArray:
-    """The geometric scan ``u0 + (1 − u0)·2^(−j/2)`` of rows whose longest first piece is known
-    to reach ``floor`` (``subdivide``'s first biarc, which is one of Sabin's family): values
-    more than two octaves below it can be no longest fit, so the grid stops there for the row
-    that needs most, and a row's values below its own cut repeat the cut (the same candidate,
-    which changes no choice: its results do not depend on the other rows). ``floor = u0``
-    means unknown: the whole grid."""
+    """The geometric scan ``u0 + (1 − u0)·2^(−j/2)`` of rows whose first piece is known to
+    reach ``floor`` (``subdivide``'s first biarc, which is one of Sabin's family, so some biarc
+    reaches it within the tolerance): the scan stops two octaves (a factor 64 in deviation)
+    below it, where the longest screened fit has never been found. Every row's grid ends at its
+    own cut: values below it repeat the cut (the same candidate, which changes no choice), so
+    a row's results do not depend on how far another row's grid goes. ``floor = u0`` means
+    unknown: the whole grid."""
     span = 1.0 - u0
     cut = u0 + (floor - u0) * 0.25
     with np.errstate(divide="ignore"):
@@ -387,6 +388,10 @@ def _first_scan(u0: FloatArray, floor: FloatArray) -> FloatArray:
     width = int(min(U_STEPS, need.max(initial=0.0)))
     grid = u0[:, None] + span[:, None] * _U_STEP_GRID[None, :width]
     grid[:, 0] = 1.0
+    if width < U_STEPS:
+        # Rounding may leave a row's last value an ulp above its cut: the cut itself ends
+        # every row's grid, alone or in a batch.
+        grid = np.concatenate([grid, cut[:, None]], axis=1)
     result: FloatArray = np.maximum(grid, cut[:, None])
     return result
 
@@ -403,7 +408,7 @@ def _search_many(
 ) -> tuple[BoolArray, SabinBiarcs, tuple[FloatArray, ...]]:
     """From each row's ``u0`` (own spiral, tolerance, previous span ``hint`` and join parameter
     ``lam_hint``), the verified biarc reaching the largest ``u1`` found: a first grid around
-    the hints (or a geometric grid over ``(u0, 1]`` and all ``λ``, cut below ``floor``, see
+    the hints (or a geometric grid over ``(u0, 1]`` and three ``λ``, cut below ``floor``, see
     :func:`_first_scan`), refining rounds, then the proof of the best candidates."""
     n = k.size
     if n == 1 and SEARCH_ONE_IN_FLOATS:
@@ -810,6 +815,9 @@ def fewest_chains(
     every row's such points in order after the walk (one call for all rows, not one per
     step): the same chains. Rows closed by none get the tail merge of their last two biarcs.
     """
+    # A far step (Newton's) is never checked for the tail merge: it must never end near the end.
+    if CLOSE_REACH > NEWTON_REACH:
+        raise ValueError("CLOSE_REACH must not exceed NEWTON_REACH")
     n = k.size
     parts: list[list[list[float]]] = [[[0.0], [0.0], [0.0], [], [0.0], [], []] for _ in range(n)]
     failed = np.zeros(n, dtype=bool)

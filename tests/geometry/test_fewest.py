@@ -386,7 +386,7 @@ def test_one_rows_round_bookkeeping_is_numpys() -> None:
     rng = np.random.default_rng(5)
     for _ in range(300):
         w, n_lam = int(rng.integers(1, 8)), int(rng.integers(1, 6))
-        grid = np.sort(rng.choice([0.3, 0.5, 0.7, 1.0], w))[None, :]
+        grid = rng.choice([0.3, 0.5, 0.7, 1.0], w)[None, :]  # any order, repeats (ties)
         dev = rng.choice([0.1, 0.5, 0.9, 1.1, 2.0, np.inf, np.nan], (1, w, n_lam))
         target = float(rng.choice([0.5, 1.0]))
         rnd = fewest._Round(grid, rng.uniform(0, 1, (1, n_lam)), dev, dev <= target)
@@ -398,22 +398,26 @@ def test_one_rows_round_bookkeeping_is_numpys() -> None:
 
 
 def test_the_first_scan_stops_two_octaves_below_subdivides_first_biarc() -> None:
+    # Each row's grid ends at its own cut, alone or beside a row that needs a longer grid (the
+    # same values, the cut repeated): its results cannot depend on its batch. The first floor
+    # puts a grid value within an ulp of the cut.
     from service.geometry import fewest
 
-    u0 = np.array([0.0, 0.0, 0.2])
-    floor = np.array([0.5, 0.01, 0.2])  # the last row: unknown (floor = u0), the whole grid
-    grid = fewest._first_scan(u0, floor)
-    assert grid.shape[1] == fewest.U_STEPS
-    np.testing.assert_array_equal(grid[2], np.r_[1.0, 0.2 + 0.8 * fewest._U_STEP_GRID[1:]])
-    cut = u0[:2] + (floor[:2] - u0[:2]) / 4
-    alone = fewest._first_scan(u0[:2], floor[:2])
-    assert alone.shape[1] < fewest.U_STEPS
-    assert np.all(alone[:, -1] <= cut)  # each row reaches its cut
-    for row in range(2):
-        full = u0[row] + (1 - u0[row]) * fewest._U_STEP_GRID[: alone.shape[1]]
+    u0 = np.array([0.0, 0.0, 0.3, 0.2])
+    floor = np.array([0.7071067811865475, 0.5, 0.31, 0.2])  # the last: unknown (floor = u0)
+    cut = u0 + (floor - u0) / 4
+    whole = fewest._first_scan(u0, floor)
+    assert whole.shape[1] == fewest.U_STEPS
+    np.testing.assert_array_equal(whole[3], np.r_[1.0, 0.2 + 0.8 * fewest._U_STEP_GRID[1:]])
+    for row in range(3):
+        alone = fewest._first_scan(u0[row : row + 1], floor[row : row + 1])[0]
+        assert alone.size < fewest.U_STEPS
+        assert alone[-1] == cut[row]
+        assert np.all(alone >= cut[row])
+        full = u0[row] + (1 - u0[row]) * fewest._U_STEP_GRID[: alone.size - 1]
         full[0] = 1.0
-        np.testing.assert_array_equal(alone[row], np.maximum(full, cut[row]))
-    np.testing.assert_array_equal(grid[:2, : alone.shape[1]], alone)
+        np.testing.assert_array_equal(alone[:-1], np.maximum(full, cut[row]))
+        assert set(alone.tolist()) == set(whole[row].tolist())
 
 
 def test_subdivides_first_biarc_cuts_no_longest_first_piece(
@@ -460,7 +464,7 @@ def test_a_newton_miss_after_steps_in_the_same_round_is_searched(
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
     # Rows far from the end take Newton steps one after another within a round; a step that
-    # misses (here every third call, forced) must be searched next, from the same start, and
+    # misses (forced at every third event of the walk) must be searched next, from its start, and
     # the chain stays within the tolerance (independent oracle).
     from service.geometry import fewest
 
@@ -488,3 +492,14 @@ def test_a_newton_miss_after_steps_in_the_same_round_is_searched(
         assert events[i + 1] == ("search", [u])  # searched next, from where the miss started
     verdict = oracle.check(np.asarray(spiral.control_points), spline, 1e-5, 60_000)
     assert not verdict.violations, verdict.describe()
+
+
+def test_the_tail_merge_reach_stays_within_newtons(monkeypatch: pytest.MonkeyPatch) -> None:
+    # Newton's steps are never checked for the tail merge (a far step cannot end near the
+    # end): constants that would make one do so are refused, not silently wrong.
+    from service.geometry import fewest
+
+    k, m, tol = _paper_canonical(1e-3)
+    monkeypatch.setattr(fewest, "CLOSE_REACH", fewest.NEWTON_REACH * 1.5)
+    with pytest.raises(ValueError, match="CLOSE_REACH"):
+        fewest.fewest_chains(k, m, tol, np.array([100]))
