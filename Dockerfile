@@ -74,7 +74,7 @@ RUN --mount=type=secret,id=ca \
     python3 -m venv /opt/build; \
     /opt/build/bin/pip install --no-deps --target /opt/app . ; \
     python -m compileall -q /opt/app; \
-    cd / && python -c "import service.__main__, service.api.app, numpy, fastapi, uvicorn"
+    cd / && python -c "import arcspline.__main__, arcspline.api.app, numpy, fastapi, uvicorn"
 
 # ---------------------------------------------------------------------------------------------
 # runtime: python3 + the venv, unprivileged, read-only-root friendly.
@@ -86,7 +86,7 @@ RUN set -eu; \
 # The venv (dependencies, no pip), then the project: two layers, the big one cached.
 COPY --from=deps /opt/venv /opt/venv
 COPY --from=builder /opt/app /opt/app
-# PYTHONSAFEPATH: `python -m service` imports the installed package, never the working dir.
+# PYTHONSAFEPATH: `python -m arcspline` imports the installed package, never the working dir.
 # PATH: the venv's python (its .pth adds /opt/app).
 ENV PATH=/opt/venv/bin:$PATH \
     PYTHONSAFEPATH=1
@@ -100,4 +100,4 @@ STOPSIGNAL SIGTERM
 HEALTHCHECK --interval=30s --timeout=5s --start-period=20s --retries=3 \
     CMD ["python", "-c", "import os, urllib.request; urllib.request.urlopen('http://127.0.0.1:%s/healthz' % os.environ.get('ARCSPLINE_PORT', '8000'), timeout=4)"]
 # One server process per container; the geometry process pool lives inside it.
-CMD ["python", "-m", "service", "--host", "0.0.0.0", "--port", "8000"]
+CMD ["python", "-m", "arcspline", "--host", "0.0.0.0", "--port", "8000"]

@@ -28,7 +28,7 @@ $(STAMP): pyproject.toml requirements/dev.lock
 	touch $@
 
 run: $(STAMP)
-	$(BIN)/python -m service --host $(HOST) --port $(PORT)
+	$(BIN)/python -m arcspline --host $(HOST) --port $(PORT)
 
 lint: $(STAMP)
 	$(BIN)/ruff check service tests bench scripts
@@ -48,7 +48,7 @@ bench: $(STAMP)
 	$(BIN)/python bench/service.py
 
 openapi: $(STAMP)
-	$(BIN)/python -m service.api.export openapi/openapi.json
+	$(BIN)/python -m arcspline.api.export openapi/openapi.json
 
 lock: $(STAMP)
 	$(BIN)/python -m pip install -q uv

@@ -1,7 +1,7 @@
 """Speed of the geometry core beside the plain one-spiral-at-a-time baseline (issue 2, point 6).
 
 Prints, for the paper's spiral at each Table 1 tolerance, µs per spiral for the core
-(``service.geometry.approximate``) and for ``bench/plain.py`` in the same run, with the arc
+(``arcspline.geometry.approximate``) and for ``bench/plain.py`` in the same run, with the arc
 counts of both (which must agree); then arcs/s over 10 000 random spirals at 1e-5 of their
 chord through ``approximate_many``, beside the plain version. Timings are best times, the core and
 the plain version timed in turn (``bench/timing.py``) so that both see the same machine load.
@@ -21,7 +21,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 from plain import plain_approximate
 from timing import paired_best
 
-from service.geometry import Spiral, approximate, approximate_many
+from arcspline.geometry import Spiral, approximate, approximate_many
 
 PAPER = {"start": (1.5, 3.0), "start_tangent": (1.0, 0.0), "turn_angle_deg": 51.34}
 PAPER_CURVATURE = 0.41574

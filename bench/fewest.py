@@ -19,7 +19,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
 from timing import paired_best
 
-from service.geometry import ArcSpline, Spiral, approximate, approximate_many
+from arcspline.geometry import ArcSpline, Spiral, approximate, approximate_many
 from tests.support import oracle
 
 PAPER = Spiral.from_parameters(

@@ -1,6 +1,6 @@
 """Speed of the HTTP service (issue 3): figures printed, never asserted.
 
-Starts ``python -m service`` as a subprocess (a pool of 2 workers) and measures, in one run:
+Starts ``python -m arcspline`` as a subprocess (a pool of 2 workers) and measures, in one run:
 
 1. with ``wrk`` (one load generator, one thread, the same settings for both): requests/s of
    ``GET /healthz`` and of ``POST /v1/approximate`` (the paper's spiral at 1e-3, 12 arcs) in
@@ -71,13 +71,13 @@ def _free_port() -> int:
 
 @contextmanager
 def server() -> Iterator[str]:
-    """``python -m service`` with a pool of 2 workers, until the block ends."""
+    """``python -m arcspline`` with a pool of 2 workers, until the block ends."""
     port = _free_port()
     env = {k: v for k, v in os.environ.items() if not k.startswith("ARCSPLINE_")}
     env["ARCSPLINE_POOL_SIZE"] = str(POOL_SIZE)
     env["ARCSPLINE_LOG_LEVEL"] = "warning"
     process = subprocess.Popen(
-        [sys.executable, "-m", "service", "--host", "127.0.0.1", "--port", str(port)],
+        [sys.executable, "-m", "arcspline", "--host", "127.0.0.1", "--port", str(port)],
         cwd=ROOT,
         env=env,
     )

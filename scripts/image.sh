@@ -355,7 +355,7 @@ test_container() {
     podman run -d --name "$CONTAINER" --network=host --read-only --tmpfs /tmp:rw,size=64m \
         --cap-drop=ALL --security-opt=no-new-privileges --memory=512m --cpus=2 \
         -e ARCSPLINE_PORT="$TEST_PORT" -e ARCSPLINE_POOL_SIZE=2 \
-        "$IMAGE" python -m service --host 127.0.0.1 --port "$TEST_PORT" >/dev/null
+        "$IMAGE" python -m arcspline --host 127.0.0.1 --port "$TEST_PORT" >/dev/null
     wait_ready "http://127.0.0.1:$TEST_PORT/readyz" container
     check_api "http://127.0.0.1:$TEST_PORT" container
     check_not_root "$CONTAINER"
@@ -404,7 +404,7 @@ patches:
       - {op: add, path: /spec/replicas, value: 1}
       - {op: add, path: /spec/template/spec/hostNetwork, value: true}
       - {op: replace, path: /spec/template/spec/containers/0/imagePullPolicy, value: Never}
-      - {op: add, path: /spec/template/spec/containers/0/args, value: [python, -m, service]}
+      - {op: add, path: /spec/template/spec/containers/0/args, value: [python, -m, arcspline]}
       - {op: remove, path: /spec/template/spec/containers/0/ports}
       - {op: remove, path: /spec/template/spec/containers/0/startupProbe}
       - {op: remove, path: /spec/template/spec/containers/0/readinessProbe}

@@ -11,9 +11,10 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
+PACKAGE = ROOT / "service" / "arcspline"
 PURE = [
-    *sorted((ROOT / "service" / "geometry").glob("*.py")),
-    *sorted((ROOT / "service" / "gcode").glob("*.py")),
+    *sorted((PACKAGE / "geometry").rglob("*.py")),
+    *sorted((PACKAGE / "outputs").rglob("*.py")),
 ]
 ALLOWED_THIRD_PARTY = {"numpy"}
 
@@ -29,23 +30,24 @@ def _imported_roots(path: Path) -> set[str]:
 
 
 @pytest.mark.parametrize("path", [p for p in PURE if p.exists()], ids=lambda p: p.name)
-def test_pure_module_imports_only_stdlib_numpy_and_service(path: Path) -> None:
+def test_pure_module_imports_only_stdlib_numpy_and_arcspline(path: Path) -> None:
     foreign = {
         name
         for name in _imported_roots(path)
         if name not in sys.stdlib_module_names
         and name not in ALLOWED_THIRD_PARTY
-        and name != "service"
+        and name != "arcspline"
     }
     assert not foreign, f"{path.name} imports {sorted(foreign)}"
 
 
 def test_importing_the_core_loads_no_web_stack() -> None:
     code = (
-        "import sys, service.geometry, service.gcode; "
+        "import sys, arcspline.geometry, arcspline.outputs.gcode; "
         "print(sorted(m for m in sys.modules if m.split('.')[0] in "
-        "{'fastapi', 'starlette', 'pydantic', 'uvicorn', 'httpx', 'service'} "
-        "and not m.startswith(('service.geometry', 'service.gcode')) and m != 'service'))"
+        "{'fastapi', 'starlette', 'pydantic', 'uvicorn', 'httpx', 'arcspline'} "
+        "and not m.startswith(('arcspline.geometry', 'arcspline.outputs'))"
+        " and m != 'arcspline'))"
     )
     out = subprocess.run(
         [sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, check=True

@@ -1,4 +1,4 @@
-"""``python -m service``: what the server process sets up before uvicorn serves."""
+"""``python -m arcspline``: what the server process sets up before uvicorn serves."""
 
 from __future__ import annotations
 
@@ -11,7 +11,7 @@ from typing import Any
 import pytest
 import uvicorn
 
-from service import __main__ as entry
+from arcspline import __main__ as entry
 
 
 @pytest.fixture
@@ -39,6 +39,6 @@ def test_the_server_collects_less_often_and_serves_the_settings(
     entry.main(["--host", "127.0.0.2", "--port", "8765"])
     assert seen["thresholds"] == entry.GC_THRESHOLDS
     assert seen["thresholds"][0] > 700
-    assert (seen["app"], seen["factory"]) == ("service.api.app:create_app", True)
+    assert (seen["app"], seen["factory"]) == ("arcspline.api.app:create_app", True)
     assert (seen["host"], seen["port"]) == ("127.0.0.2", 8765)
     assert signal.getsignal(signal.SIGTERM) is entry._exit_cleanly

@@ -7,8 +7,8 @@ import os
 import pytest
 from pydantic import ValidationError
 
-from service.geometry import DEFAULT_LIMITS, Limits
-from service.settings import Settings, available_cpus, get_settings
+from arcspline.geometry import DEFAULT_LIMITS, Limits
+from arcspline.settings import Settings, available_cpus, get_settings
 
 
 @pytest.fixture(autouse=True)

@@ -14,8 +14,8 @@ import pytest
 from asgi_lifespan import LifespanManager
 from fastapi import FastAPI
 
-from service.api.app import create_app
-from service.settings import Settings
+from arcspline.api.app import create_app
+from arcspline.settings import Settings
 
 #: Small pools: the suite runs two test processes on two cores.
 TEST_SETTINGS: dict[str, Any] = {"pool_size": 2, "queue_capacity": 16}

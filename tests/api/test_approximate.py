@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 from support import oracle
 
-from service.api.schemas import ApproximateResponse
+from arcspline.api.schemas import ApproximateResponse
 
 from .conftest import locs, problem_of, running_app, until_ready
 from .spline_json import control_points, spline_from_json

@@ -7,7 +7,7 @@ from typing import Any
 import httpx
 import pytest
 
-from service.api.schemas import BatchResponse
+from arcspline.api.schemas import BatchResponse
 
 from .conftest import locs, problem_of, running_app, until_ready
 from .spline_json import same_json

@@ -6,7 +6,7 @@ import pickle
 
 import pytest
 
-from service.api.errors import (
+from arcspline.api.errors import (
     clean_loc,
     core_field_loc,
     gcode_problem,
@@ -16,9 +16,9 @@ from service.api.errors import (
     problem_kind,
     validation_problem,
 )
-from service.gcode import GcodeError
-from service.geometry import GeometryError
-from service.worker import JobTimeoutError, PoolUnavailableError, QueueFullError
+from arcspline.geometry import GeometryError
+from arcspline.outputs.gcode import GcodeError
+from arcspline.worker.pool import JobTimeoutError, PoolUnavailableError, QueueFullError
 
 
 @pytest.mark.parametrize(

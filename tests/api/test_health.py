@@ -6,8 +6,8 @@ import httpx
 import pytest
 from fastapi import FastAPI
 
-from service.api.app import create_app
-from service.settings import Settings
+from arcspline.api.app import create_app
+from arcspline.settings import Settings
 
 from .conftest import problem_of
 

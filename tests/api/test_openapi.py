@@ -9,10 +9,10 @@ from typing import Any
 import httpx
 import pytest
 
-from service.api.app import create_app
-from service.api.export import render
-from service.api.schemas import PAPER_EXAMPLE, ApproximateRequest
-from service.settings import Settings
+from arcspline.api.app import create_app
+from arcspline.api.export import render
+from arcspline.api.schemas import PAPER_EXAMPLE, ApproximateRequest
+from arcspline.settings import Settings
 
 OPENAPI = Path(__file__).resolve().parents[2] / "openapi" / "openapi.json"
 

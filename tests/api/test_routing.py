@@ -10,7 +10,7 @@ import pytest
 from fastapi import APIRouter, FastAPI, Request
 from starlette.responses import Response
 
-from service.api.routing import LeanRoute
+from arcspline.api.routing import LeanRoute
 
 from .conftest import locs, problem_of
 

@@ -8,14 +8,14 @@ from typing import Any
 import pytest
 from pydantic import TypeAdapter, ValidationError
 
-from service.api.schemas import (
+from arcspline.api.schemas import (
     ApproximateRequest,
     ApproximateResponse,
     SpiralControlPoints,
     SpiralParameters,
 )
-from service.geometry import STRATEGIES, Spiral, approximate
-from service.jobs import Encoded, encode
+from arcspline.geometry import STRATEGIES, Spiral, approximate
+from arcspline.worker.jobs import Encoded, encode
 
 ADAPTER: TypeAdapter[ApproximateRequest] = TypeAdapter(ApproximateRequest)
 

@@ -26,8 +26,8 @@ from schemathesis.checks import (
     status_code_conformance,
 )
 
-from service.api.app import create_app
-from service.settings import Settings
+from arcspline.api.app import create_app
+from arcspline.settings import Settings
 
 OPENAPI = Path(__file__).resolve().parents[2] / "openapi" / "openapi.json"
 

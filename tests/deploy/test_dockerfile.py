@@ -58,7 +58,7 @@ def test_cmd_is_one_server_process_in_exec_form(
     assert json.loads(last(runtime, "CMD")) == [
         "python",
         "-m",
-        "service",
+        "arcspline",
         "--host",
         "0.0.0.0",
         "--port",

@@ -12,7 +12,7 @@ from typing import Any
 import pytest
 import yaml
 
-from service.settings import Settings
+from arcspline.settings import Settings
 
 DEPLOY = Path(__file__).resolve().parents[2] / "deploy"
 Validate = Callable[..., str]  # the `validate` fixture (conftest.py)

@@ -1,1 +1,1 @@
-"""Tests of the pure geometry core (``service.geometry``)."""
+"""Tests of the pure geometry core (``arcspline.geometry``)."""

@@ -8,12 +8,12 @@ import pytest
 from hypothesis import assume, given
 from hypothesis import strategies as st
 
-from service.geometry import Spiral, canonical, min_tolerance
-from service.geometry.approximate import PLACEMENT_SCREEN_ULPS
-from service.geometry.assemble import Frames, segment_columns, spiral_lengths, splines
-from service.geometry.assemble_one import MAX_BIARCS, assemble_one, numpy_sum
-from service.geometry.subdivide_one import kept, subdivide_one
-from service.geometry.types import ArcSpline, SegmentColumns
+from arcspline.geometry import Spiral, canonical, min_tolerance
+from arcspline.geometry.approximate import PLACEMENT_SCREEN_ULPS
+from arcspline.geometry.assemble import Frames, segment_columns, spiral_lengths, splines
+from arcspline.geometry.assemble_one import MAX_BIARCS, assemble_one, numpy_sum
+from arcspline.geometry.subdivide_one import kept, subdivide_one
+from arcspline.geometry.types import ArcSpline, SegmentColumns
 from tests.geometry.test_properties import PROPERTY, relative_tolerances, spirals
 
 

@@ -14,7 +14,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from service.geometry import GeometryError, Spiral, approximate, approximate_many
+from arcspline.geometry import GeometryError, Spiral, approximate, approximate_many
 from tests.support import oracle
 
 PAPER = {"start": (1.5, 3.0), "start_tangent": (1.0, 0.0), "turn_angle_deg": 51.34}
@@ -127,7 +127,7 @@ def test_exact_arc_deviation_matches_dense_sampling(
     # largest radial distance found by dense sampling of the spiral piece between the arc's
     # end normals — computed here from scratch with a plain Bézier-free polynomial and a
     # bisection for the piece's ends.
-    from service.geometry.fewest_exact import arc_deviation
+    from arcspline.geometry.fewest_exact import arc_deviation
 
     th = math.radians(theta_deg)
     k, m = 1.2 * math.cos(th) ** 2 - 1.0, 1.2 * math.cos(th) * math.sin(th)
@@ -190,7 +190,7 @@ def test_exact_arc_deviation_matches_dense_sampling(
 def test_screening_distance_is_the_radial_distance() -> None:
     # The screen's one-square-root form |ν| / (1 + √(1 + κν)) must equal |‖Q − C‖ − r|, here
     # computed directly from the circle's centre for random circles and spiral points.
-    from service.geometry.fewest_exact import screen_radial
+    from arcspline.geometry.fewest_exact import screen_radial
 
     rng = np.random.default_rng(3)
     n = 5000
@@ -229,7 +229,7 @@ def test_newton_steps_are_proven_and_reach_the_tolerance(monkeypatch: pytest.Mon
     # Every arc of the chain, measured here from scratch (radial distance of 4000 samples of
     # its spiral piece to its circle), is within the tolerance; the pieces that Newton's step
     # found reach at least NEWTON_FLOOR of it, and it found most of them.
-    from service.geometry import fewest, fewest_newton
+    from arcspline.geometry import fewest, fewest_newton
 
     k, m, tol = _paper_canonical(1e-5)
     newton_ends: list[float] = []
@@ -266,7 +266,7 @@ def test_newton_steps_are_proven_and_reach_the_tolerance(monkeypatch: pytest.Mon
 def test_a_newton_miss_leaves_the_grid_search_its_row(monkeypatch: pytest.MonkeyPatch) -> None:
     # With the floor out of reach the Newton step finds nothing: every chain must then be the
     # chain of the grids alone (no state of the failed iteration leaks into the walk).
-    from service.geometry import fewest, fewest_newton
+    from arcspline.geometry import fewest, fewest_newton
 
     spirals_tol = [_paper_canonical(t) for t in (1e-4, 1e-5)]
     k = np.concatenate([s[0] for s in spirals_tol])
@@ -288,7 +288,7 @@ def test_a_single_walk_closes_early_with_the_chains_a_batch_closes_after(
     # the walk. Biarcs screened short (30 % of the tolerance, no Newton step) and CLOSE_REACH
     # raised give rows several such points, some proven before the last (shorter chains):
     # the batch's chains must still be those of single walks, element for element.
-    from service.geometry import fewest
+    from arcspline.geometry import fewest
 
     rng = np.random.default_rng(12)
     theta = np.radians(rng.uniform(10.0, 85.0, 10))
@@ -321,7 +321,7 @@ def test_a_single_walk_closes_early_with_the_chains_a_batch_closes_after(
 def test_the_end_scan_shares_a_pass_with_the_same_numbers() -> None:
     # The first step's end scan and geometric scan, evaluated in one pass, give every
     # candidate the screened deviation that separate rounds give it (bit for bit).
-    from service.geometry import fewest
+    from arcspline.geometry import fewest
 
     rng = np.random.default_rng(3)
     theta = np.radians(rng.uniform(5.0, 89.0, 7))
@@ -349,7 +349,7 @@ def test_one_rows_search_in_floats_is_the_array_result(
     # A single row's search keeps its bookkeeping in floats: from every kind of start (no
     # hint, a hint past the end, near the end, far from it), found, biarc and deviations must
     # be the array bookkeeping's, bit for bit.
-    from service.geometry import fewest
+    from arcspline.geometry import fewest
 
     rng = np.random.default_rng(seed)
     cases = 0
@@ -381,7 +381,7 @@ def test_one_rows_search_in_floats_is_the_array_result(
 def test_one_rows_round_bookkeeping_is_numpys() -> None:
     # The float bookkeeping of one row's round follows numpy's argmax/argmin/min exactly:
     # repeated grid values (a hinted grid clipped at the end), NaN and inf deviations.
-    from service.geometry import fewest
+    from arcspline.geometry import fewest
 
     rng = np.random.default_rng(5)
     for _ in range(300):
@@ -401,7 +401,7 @@ def test_the_first_scan_stops_two_octaves_below_subdivides_first_biarc() -> None
     # Each row's grid ends at its own cut, alone or beside a row that needs a longer grid (the
     # same values, the cut repeated): its results cannot depend on its batch. The first floor
     # puts a grid value within an ulp of the cut.
-    from service.geometry import fewest
+    from arcspline.geometry import fewest
 
     u0 = np.array([0.0, 0.0, 0.3, 0.2])
     floor = np.array([0.7071067811865475, 0.5, 0.31, 0.2])  # the last: unknown (floor = u0)
@@ -425,7 +425,7 @@ def test_subdivides_first_biarc_cuts_no_longest_first_piece(
 ) -> None:
     # The first scan cut two octaves below subdivide's first biarc finds the chains of the
     # whole scan.
-    from service.geometry import fewest
+    from arcspline.geometry import fewest
 
     widths: list[int] = []
     real = fewest._evaluate_with_end
@@ -466,7 +466,7 @@ def test_a_newton_miss_after_steps_in_the_same_round_is_searched(
     # Rows far from the end take Newton steps one after another within a round; a step that
     # misses (forced at every third event of the walk) must be searched next, from its start, and
     # the chain stays within the tolerance (independent oracle).
-    from service.geometry import fewest
+    from arcspline.geometry import fewest
 
     real_newton, real_search = fewest.newton_step, fewest._search_many
     events: list[tuple[str, list[float]]] = []
@@ -497,7 +497,7 @@ def test_a_newton_miss_after_steps_in_the_same_round_is_searched(
 def test_the_tail_merge_reach_stays_within_newtons(monkeypatch: pytest.MonkeyPatch) -> None:
     # Newton's steps are never checked for the tail merge (a far step cannot end near the
     # end): constants that would make one do so are refused, not silently wrong.
-    from service.geometry import fewest
+    from arcspline.geometry import fewest
 
     k, m, tol = _paper_canonical(1e-3)
     monkeypatch.setattr(fewest, "CLOSE_REACH", fewest.NEWTON_REACH * 1.5)

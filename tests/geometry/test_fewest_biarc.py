@@ -13,8 +13,8 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from service.geometry import fewest_biarc
-from service.geometry.fewest_biarc import SabinBiarcs
+from arcspline.geometry import fewest_biarc
+from arcspline.geometry.fewest_biarc import SabinBiarcs
 from tests.geometry.test_fewest_newton import _bits, _rows
 
 

@@ -15,7 +15,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from service.geometry import (
+from arcspline.geometry import (
     Spiral,
     approximate,
     approximate_many,
@@ -23,8 +23,8 @@ from service.geometry import (
     fewest_newton,
     fewest_tail,
 )
-from service.geometry import fewest as fewest_module
-from service.geometry import fewest_exact_one as one
+from arcspline.geometry import fewest as fewest_module
+from arcspline.geometry import fewest_exact_one as one
 from tests.geometry.test_fewest import PAPER
 
 

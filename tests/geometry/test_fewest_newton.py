@@ -12,8 +12,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from service.geometry import fewest, fewest_newton
-from service.geometry.fewest_biarc import SabinBiarcs
+from arcspline.geometry import fewest, fewest_newton
+from arcspline.geometry.fewest_biarc import SabinBiarcs
 
 
 def _rows(seed: int, n: int) -> tuple[np.ndarray, ...]:

@@ -10,7 +10,7 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from service.geometry import fewest_tail
+from arcspline.geometry import fewest_tail
 from tests.geometry.test_fewest_newton import _bits
 
 

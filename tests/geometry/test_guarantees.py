@@ -16,7 +16,7 @@ from pathlib import Path
 
 import pytest
 
-from service.geometry import (
+from arcspline.geometry import (
     STRATEGIES,
     ArcSpline,
     GeometryError,

@@ -8,7 +8,7 @@ import math
 
 import pytest
 
-from service.geometry import (
+from arcspline.geometry import (
     DEFAULT_LIMITS,
     STRATEGIES,
     ArcSpline,

@@ -14,7 +14,7 @@ import pytest
 from hypothesis import HealthCheck, Phase, assume, given, settings
 from hypothesis import strategies as st
 
-from service.geometry import (
+from arcspline.geometry import (
     ArcSpline,
     GeometryError,
     Spiral,

@@ -13,7 +13,7 @@ import re
 import numpy as np
 import pytest
 
-from service.geometry import GeometryError, Spiral
+from arcspline.geometry import GeometryError, Spiral
 from tests.support import oracle
 
 EPS = float(np.finfo(np.float64).eps)

@@ -14,10 +14,10 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from service.geometry import canonical, roots
-from service.geometry import subdivide_one as subdivide_one_module
-from service.geometry.subdivide import MAX_LEVELS, Kept, subdivide
-from service.geometry.subdivide_one import MAX_PIECES, kept, subdivide_one
+from arcspline.geometry import canonical, roots
+from arcspline.geometry import subdivide_one as subdivide_one_module
+from arcspline.geometry.subdivide import MAX_LEVELS, Kept, subdivide
+from arcspline.geometry.subdivide_one import MAX_PIECES, kept, subdivide_one
 from tests.geometry.test_properties import PROPERTY
 
 PAPER_THETA_DEG = 51.34

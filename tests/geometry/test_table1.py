@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from service.geometry import Spiral, approximate
+from arcspline.geometry import Spiral, approximate
 
 TABLE = json.loads((Path(__file__).parent / "data" / "table1.json").read_text())
 SPIRAL = Spiral.from_parameters(**TABLE["spiral"])

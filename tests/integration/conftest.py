@@ -1,4 +1,4 @@
-"""A real server: ``python -m service`` in a subprocess, reached over HTTP."""
+"""A real server: ``python -m arcspline`` in a subprocess, reached over HTTP."""
 
 from __future__ import annotations
 
@@ -88,14 +88,14 @@ class Server:
 
 @contextmanager
 def running_server(tmp_path: Path, **settings: Any) -> Iterator[Server]:
-    """``python -m service`` on a free port, with ``ARCSPLINE_<NAME>`` from ``settings``."""
+    """``python -m arcspline`` on a free port, with ``ARCSPLINE_<NAME>`` from ``settings``."""
     port = _free_port()
     env = {k: v for k, v in os.environ.items() if not k.upper().startswith("ARCSPLINE_")}
     env.update({f"ARCSPLINE_{k.upper()}": str(v) for k, v in settings.items()})
     log = tmp_path / f"server-{port}.log"
     with log.open("wb") as sink:
         process = subprocess.Popen(
-            [sys.executable, "-m", "service", "--host", "127.0.0.1", "--port", str(port)],
+            [sys.executable, "-m", "arcspline", "--host", "127.0.0.1", "--port", str(port)],
             cwd=ROOT,
             env=env,
             stdout=sink,

@@ -1,4 +1,4 @@
-"""An independent reader of RS-274/NGC programs, for checking what ``service.gcode`` writes.
+"""An independent reader of RS-274/NGC programs, to check what ``arcspline.outputs.gcode`` writes.
 
 It shares no code with the writer. It reads a program as a controller would and rebuilds
 the tool path:

@@ -1,6 +1,6 @@
 """An independent oracle for the geometry core's guarantees.
 
-It shares no code with ``service.geometry``: it reads only a spiral's four control points and
+It shares no code with ``arcspline.geometry``: it reads only a spiral's four control points and
 the public fields of a result (the segments in path order and the statistics), and measures
 everything by its own computation:
 

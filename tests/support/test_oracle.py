@@ -8,7 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 import pytest
 
-from service.geometry import ArcSegment, LineSegment, Point, SplineStats
+from arcspline.geometry import ArcSegment, LineSegment, Point, SplineStats
 from tests.support import oracle
 
 # Straight "Bézier": equally spaced collinear control points give Q(u) = (3u, 0).

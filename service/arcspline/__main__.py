@@ -1,0 +1,99 @@
+"""``python -m arcspline [--host H] [--port P]``: serve the API with uvicorn.
+
+One uvicorn process (the approximation itself runs in the worker pool) on uvloop and
+httptools, without an access log unless ``ARCSPLINE_ACCESS_LOG=true``. SIGTERM or SIGINT
+stops accepting connections, lets in-flight requests finish (up to
+``ARCSPLINE_DRAIN_TIMEOUT_S``), stops the workers and exits 0.
+"""
+
+from __future__ import annotations
+
+import argparse
+import gc
+import signal
+from types import FrameType
+from typing import Any
+
+
+def log_config(level: str) -> dict[str, Any]:
+    """Uvicorn's loggers and ours, each line tagged with the request id."""
+    fmt = "%(asctime)s %(levelname)s %(name)s [%(correlation_id)s] %(message)s"
+    return {
+        "version": 1,
+        "disable_existing_loggers": False,
+        "filters": {
+            "request_id": {
+                "()": "asgi_correlation_id.CorrelationIdFilter",
+                "uuid_length": 32,
+                "default_value": "-",
+            }
+        },
+        "formatters": {"default": {"format": fmt}},
+        "handlers": {
+            "default": {
+                "class": "logging.StreamHandler",
+                "formatter": "default",
+                "filters": ["request_id"],
+                "stream": "ext://sys.stderr",
+            }
+        },
+        "loggers": {
+            "": {"handlers": ["default"], "level": level.upper()},
+            "uvicorn": {"handlers": [], "level": level.upper(), "propagate": True},
+            "uvicorn.error": {"handlers": [], "level": level.upper(), "propagate": True},
+            "uvicorn.access": {"handlers": [], "level": level.upper(), "propagate": True},
+        },
+    }
+
+
+#: The server process's collector thresholds. With CPython's default (700, 10, 10) a young
+#: collection runs every ~1.5 requests and walks every object that the requests waiting on
+#: the pool hold; measured over HTTP (wrk, pool of 2, paper spiral at 1e-3), these give
+#: ``POST /v1/approximate`` 10–25 % more requests/s and leave ``GET /healthz`` unchanged.
+#: Memory is not at stake: reference counting frees almost everything, and the cycles left
+#: (exceptions with their tracebacks) wait at most 50 000 allocations.
+GC_THRESHOLDS = (50_000, 20, 100)
+
+
+def tune_gc() -> None:
+    """Collect less often in the server process (the workers keep the defaults)."""
+    gc.set_threshold(*GC_THRESHOLDS)
+
+
+def _exit_cleanly(signum: int, frame: FrameType | None) -> None:
+    raise SystemExit(0)
+
+
+def main(argv: list[str] | None = None) -> None:
+    import uvicorn
+
+    from arcspline.settings import get_settings
+
+    settings = get_settings()
+    parser = argparse.ArgumentParser(prog="python -m arcspline", description=__doc__)
+    parser.add_argument("--host", default=settings.host, help="address (ARCSPLINE_HOST)")
+    parser.add_argument("--port", type=int, default=settings.port, help="port (ARCSPLINE_PORT)")
+    args = parser.parse_args(argv)
+    # Uvicorn drains on SIGTERM, then raises the signal again under the handler it found at
+    # start, so that the exit status says "terminated". A drained server has nothing to
+    # report: with this handler it exits 0.
+    signal.signal(signal.SIGTERM, _exit_cleanly)
+    tune_gc()
+    uvicorn.run(
+        "arcspline.api.app:create_app",
+        factory=True,
+        host=args.host,
+        port=args.port,
+        loop="uvloop",
+        http="httptools",
+        lifespan="on",
+        access_log=settings.access_log,
+        log_level=settings.log_level,
+        log_config=log_config(settings.log_level),
+        timeout_graceful_shutdown=settings.drain_timeout_s,
+        server_header=False,
+    )
+
+
+if __name__ == "__main__":
+    main()

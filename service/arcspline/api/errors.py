@@ -1,0 +1,263 @@
+"""Every 4xx and 5xx answer as RFC 9457 problem details (``application/problem+json``).
+
+A problem has ``type`` (a URI naming its kind), ``title``, ``status`` and ``detail``, and
+where it applies ``errors`` (each naming the field path and the reason), ``limit`` (the
+bound that was crossed) and ``request_id`` (the ``X-Request-ID`` of the request). The
+``kind`` of each problem is also the label of the ``arcspline_errors_total`` metric.
+"""
+
+from __future__ import annotations
+
+import http
+import logging
+import re
+from collections.abc import Iterable, Mapping, Sequence
+from typing import Any
+
+import orjson
+from asgi_correlation_id import correlation_id
+from fastapi import FastAPI, Request
+from fastapi.exceptions import RequestValidationError
+from starlette.exceptions import HTTPException
+from starlette.responses import JSONResponse, Response
+
+from arcspline.geometry import GeometryError
+from arcspline.outputs.gcode import GcodeError
+from arcspline.worker.pool import JobTimeoutError, PoolError, QueueFullError
+
+from .schemas import SPIRAL_TAGS
+
+log = logging.getLogger(__name__)
+
+PROBLEM_MEDIA_TYPE = "application/problem+json"
+TYPE_PREFIX = "urn:arcspline:problem:"
+
+#: kind -> (status, title). Plain HTTP errors (404, 405, ...) use ``about:blank``.
+KINDS: dict[str, tuple[int, str]] = {
+    "malformed_json": (400, "Malformed JSON"),
+    "body_too_large": (413, "Request body too large"),
+    "too_many_jobs": (413, "Too many jobs"),
+    "validation": (422, "Invalid request"),
+    "invalid_input": (422, "Invalid spiral"),
+    "tolerance_floor": (422, "Tolerance below what can be reached"),
+    "segment_limit": (422, "Too many segments"),
+    "precision": (422, "Beyond double precision"),
+    "gcode": (422, "G-code cannot be written"),
+    "internal": (500, "Internal server error"),
+    "queue_full": (503, "Server busy"),
+    "pool_unavailable": (503, "Workers unavailable"),
+    "not_ready": (503, "Not ready"),
+    "time_limit": (504, "Time limit exceeded"),
+}
+HTTP_KINDS = {404: "not_found", 405: "method_not_allowed", 413: "body_too_large"}
+ALL_KINDS = (*KINDS, "not_found", "method_not_allowed", "http_error")
+
+Loc = list[str | int]
+
+
+class RawJSONResponse(JSONResponse):
+    """JSON rendered by orjson; ``bytes`` content is taken as already-encoded JSON."""
+
+    def render(self, content: Any) -> bytes:
+        if isinstance(content, bytes):
+            return content
+        return orjson.dumps(content)
+
+
+class ProblemJSONResponse(RawJSONResponse):
+    media_type = PROBLEM_MEDIA_TYPE
+
+
+class ProblemError(Exception):
+    """Raised by routes to answer with a problem; carries its body and extra headers."""
+
+    def __init__(self, problem: dict[str, Any], headers: Mapping[str, str] | None = None) -> None:
+        super().__init__(problem["detail"])
+        self.problem = problem
+        self.headers = dict(headers or {})
+
+
+def problem(
+    kind: str,
+    detail: str,
+    *,
+    status: int | None = None,
+    title: str | None = None,
+    errors: Sequence[dict[str, Any]] | None = None,
+    limit: float | None = None,
+) -> dict[str, Any]:
+    """A problem body; ``status``/``title`` default to those of ``kind``."""
+    known = KINDS.get(kind)
+    if known is not None:
+        type_ = TYPE_PREFIX + kind.replace("_", "-")
+        status = status or known[0]
+        title = title or known[1]
+    else:
+        type_ = "about:blank"
+        assert status is not None, "a plain HTTP problem needs its status"
+        title = title or http.HTTPStatus(status).phrase
+    body: dict[str, Any] = {"type": type_, "title": title, "status": status, "detail": detail}
+    request_id = correlation_id.get()
+    if request_id:
+        body["request_id"] = request_id
+    if errors:
+        body["errors"] = list(errors)
+    if limit is not None:
+        body["limit"] = limit
+    return body
+
+
+def problem_kind(body: Mapping[str, Any]) -> str:
+    """The metric label of a problem body."""
+    type_ = str(body["type"])
+    if type_.startswith(TYPE_PREFIX):
+        return type_.removeprefix(TYPE_PREFIX).replace("-", "_")
+    return HTTP_KINDS.get(int(body["status"]), "http_error")
+
+
+def problem_response(
+    body: dict[str, Any], request: Request | None = None, headers: Mapping[str, str] | None = None
+) -> ProblemJSONResponse:
+    """The response for ``body``, counted in the error metrics when a request is given."""
+    if request is not None:
+        request.app.state.runtime.metrics.error(problem_kind(body))
+    return ProblemJSONResponse(body, status_code=int(body["status"]), headers=headers)
+
+
+_RESPONSE_DESCRIPTIONS = {
+    400: "Malformed JSON",
+    413: "Request body too large, or too many jobs",
+    422: "Invalid request: the errors name each field",
+    503: "Busy (queue full; see Retry-After) or workers unavailable",
+    504: "Time limit exceeded",
+}
+
+
+def problem_responses(*statuses: int) -> dict[int | str, dict[str, Any]]:
+    """OpenAPI ``responses`` entries for problems answered with these statuses."""
+    schema = {"$ref": "#/components/schemas/ProblemResponse"}
+    return {
+        status: {
+            "description": _RESPONSE_DESCRIPTIONS[status],
+            "content": {PROBLEM_MEDIA_TYPE: {"schema": schema}},
+        }
+        for status in statuses
+    }
+
+
+# -- field paths -------------------------------------------------------------------------
+
+_SPIRAL_FIELDS = {"start", "start_tangent", "turn_angle_deg", "end_curvature", "control_points"}
+_CORE_FIELD = re.compile(r"(?P<name>[A-Za-z_]\w*)(?:\[(?P<index>\d+)\])?")
+
+
+def core_field_loc(field: str) -> Loc:
+    """The request path of a core parameter: ``control_points[2]`` → spiral.control_points.2."""
+    match = _CORE_FIELD.fullmatch(field)
+    if match is None:
+        return [field]
+    name, index = match["name"], match["index"]
+    loc: Loc = ["spiral", name] if name in _SPIRAL_FIELDS else [name]
+    if index is not None:
+        loc.append(int(index))
+    return loc
+
+
+def clean_loc(loc: Iterable[str | int]) -> Loc:
+    """A validation path as the client wrote it (without the spiral union's tags)."""
+    return [part for part in loc if part not in SPIRAL_TAGS]
+
+
+def dotted(loc: Sequence[str | int]) -> str:
+    return ".".join(str(part) for part in loc)
+
+
+def validation_problem(errors: Sequence[Mapping[str, Any]], prefix: Loc) -> dict[str, Any]:
+    """422 for pydantic errors; ``prefix`` is prepended to each path."""
+    items = [
+        {"loc": [*prefix, *clean_loc(e["loc"])], "msg": str(e["msg"]), "type": str(e["type"])}
+        for e in errors
+    ]
+    shown = "; ".join(f"{dotted(i['loc'])}: {i['msg']}" for i in items[:3])
+    more = f" (and {len(items) - 3} more)" if len(items) > 3 else ""
+    return problem("validation", f"{len(items)} invalid field(s): {shown}{more}", errors=items)
+
+
+def geometry_problem(error: GeometryError, prefix: Loc) -> dict[str, Any]:
+    """422 for a :class:`GeometryError`, naming the field by its request path."""
+    loc = [*prefix, *core_field_loc(error.field)]
+    detail = f"{dotted(loc)}: {error.message}"
+    if error.limit is not None and error.kind in ("tolerance_floor", "segment_limit"):
+        detail += f" (limit: {error.limit:g})"
+    kind = error.kind if error.kind in KINDS else "invalid_input"
+    item = {"loc": loc, "msg": error.message, "type": error.kind}
+    return problem(kind, detail, errors=[item], limit=error.limit)
+
+
+def gcode_problem(error: GcodeError, prefix: Loc) -> dict[str, Any]:
+    """422 for a :class:`GcodeError`: the field is a ``gcode`` option, or the spiral itself
+    when it cannot be written at all (coordinates beyond what a controller takes)."""
+    parts = str(error.field).split(".")
+    if parts[0] not in ("gcode", "spiral"):
+        parts = ["gcode", *parts]
+    loc: Loc = [*prefix, *parts]
+    item = {"loc": loc, "msg": error.message, "type": "gcode"}
+    return problem("gcode", f"{dotted(loc)}: {error.message}", errors=[item])
+
+
+def pool_problem(error: PoolError) -> tuple[dict[str, Any], dict[str, str]]:
+    """503 (busy, unavailable) or 504 (time limit), with ``Retry-After`` where it helps."""
+    if isinstance(error, JobTimeoutError):
+        return problem("time_limit", str(error), limit=error.time_limit_s), {}
+    kind = "queue_full" if isinstance(error, QueueFullError) else "pool_unavailable"
+    retry_after = error.retry_after_s if error.retry_after_s is not None else 1
+    detail = f"{error}; retry in {retry_after:g} s"
+    return problem(kind, detail), {"Retry-After": str(max(1, round(retry_after)))}
+
+
+# -- handlers ----------------------------------------------------------------------------
+
+
+async def _on_validation_error(request: Request, exc: Exception) -> Response:
+    # Bodies are parsed by routing.LeanRoute: JSON it cannot parse is a malformed_json
+    # problem already; what is left here are the fields that fail validation.
+    assert isinstance(exc, RequestValidationError)
+    return problem_response(validation_problem(exc.errors(), []), request)
+
+
+async def _on_http_error(request: Request, exc: Exception) -> Response:
+    assert isinstance(exc, HTTPException)
+    status = exc.status_code
+    if status == 413:
+        body = problem("body_too_large", str(exc.detail))
+        body["limit"] = request.app.state.runtime.settings.max_body_bytes
+    else:
+        detail = exc.detail if isinstance(exc.detail, str) else http.HTTPStatus(status).phrase
+        body = problem("http", detail, status=status)
+    return problem_response(body, request, headers=exc.headers)
+
+
+async def _on_problem(request: Request, exc: Exception) -> Response:
+    assert isinstance(exc, ProblemError)
+    return problem_response(exc.problem, request, headers=exc.headers)
+
+
+async def _on_pool_error(request: Request, exc: Exception) -> Response:
+    assert isinstance(exc, PoolError)
+    body, headers = pool_problem(exc)
+    return problem_response(body, request, headers=headers)
+
+
+async def _on_unexpected(request: Request, exc: Exception) -> Response:
+    log.error("unhandled error", exc_info=exc)
+    body = problem("internal", "an unexpected error occurred; it has been logged")
+    return problem_response(body, request)
+
+
+def install_error_handlers(app: FastAPI) -> None:
+    """Route every error the app can raise to a problem response."""
+    app.add_exception_handler(RequestValidationError, _on_validation_error)
+    app.add_exception_handler(HTTPException, _on_http_error)
+    app.add_exception_handler(ProblemError, _on_problem)
+    app.add_exception_handler(PoolError, _on_pool_error)
+    app.add_exception_handler(Exception, _on_unexpected)

@@ -1,0 +1,281 @@
+"""Request and response models: the public contract, as the OpenAPI document shows it.
+
+Requests are validated strictly and cheaply here: unknown fields, non-finite numbers, wrong
+lengths, out-of-range angles, a zero curvature or tangent, a non-positive tolerance and an
+unknown strategy are refused before any work is queued; what only the geometry can decide
+(an unreachable tolerance, a spiral too large for double precision) the core reports.
+
+Responses are never built from these models at run time (the worker serialises them
+directly, see ``arcspline.worker.pool.encode``); the models document them, and the tests check
+real responses against them.
+"""
+
+from __future__ import annotations
+
+from typing import Annotated, Any, Literal
+
+from pydantic import (
+    BaseModel,
+    ConfigDict,
+    Discriminator,
+    Field,
+    SkipValidation,
+    Tag,
+    field_validator,
+)
+
+from arcspline.geometry import Strategy
+from arcspline.outputs.gcode import MAX_DECIMALS, MIN_DECIMALS
+
+#: The paper's example (Walton & Meek 1996, Table 1): 12 arcs at this tolerance.
+PAPER_EXAMPLE: dict[str, Any] = {
+    "spiral": {
+        "start": [1.5, 3.0],
+        "start_tangent": [1.0, 0.0],
+        "turn_angle_deg": 51.34,
+        "end_curvature": 0.41574,
+    },
+    "tolerance": 0.001,
+    "strategy": "subdivide",
+}
+
+
+class RequestModel(BaseModel):
+    """Strict JSON input: no unknown fields, no NaN or Infinity, no strings for numbers."""
+
+    model_config = ConfigDict(extra="forbid", strict=True, allow_inf_nan=False, frozen=True)
+
+
+class ResponseModel(BaseModel):
+    """Documentation of a response body (exactly these fields)."""
+
+    model_config = ConfigDict(extra="forbid")
+
+
+Vector = Annotated[list[float], Field(min_length=2, max_length=2, description="[x, y]")]
+
+
+class SpiralParameters(RequestModel):
+    """The paper's five parameters (§1)."""
+
+    start: Vector = Field(description="Start point B0.")
+    # Non-zero is checked below; JSON Schema's "not": {"const": [0, 0]} would say it, but
+    # test generators (hypothesis-jsonschema) cannot work with it.
+    start_tangent: Vector = Field(
+        description="Direction of the start tangent T0 (any non-zero length)."
+    )
+    turn_angle_deg: float = Field(
+        gt=0, lt=90, description="Turn angle θ between the end tangents, degrees."
+    )
+    end_curvature: float = Field(
+        description="Curvature c at the end; its sign is the turning direction (+ = left).",
+        json_schema_extra={"not": {"const": 0}},
+    )
+
+    @field_validator("start_tangent")
+    @classmethod
+    def _non_zero(cls, value: list[float]) -> list[float]:
+        if value[0] == 0.0 and value[1] == 0.0:
+            raise ValueError("must be a non-zero vector")
+        return value
+
+    @field_validator("end_curvature")
+    @classmethod
+    def _curved(cls, value: float) -> float:
+        if value == 0.0:
+            raise ValueError("must be non-zero (its sign is the turning direction)")
+        return value
+
+
+class SpiralControlPoints(RequestModel):
+    """Four Bézier control points of the paper's form.
+
+    That is ``B1 − B0 = B2 − B1`` and ``|B3 − B2| = 1.2·cos θ·|B1 − B0|``, θ the angle between
+    ``B1 − B0`` and ``B3 − B2`` (0 < θ < 90°).
+    """
+
+    control_points: list[Vector] = Field(min_length=4, max_length=4)
+
+
+#: Tags of the spiral union; they appear in validation paths and the API removes them.
+SPIRAL_TAGS = ("spiral-parameters", "spiral-control-points")
+
+
+def _spiral_tag(value: Any) -> str:
+    given_points = isinstance(value, dict) and "control_points" in value
+    if given_points or isinstance(value, SpiralControlPoints):
+        return SPIRAL_TAGS[1]
+    return SPIRAL_TAGS[0]
+
+
+SpiralRequest = Annotated[
+    Annotated[SpiralParameters, Tag(SPIRAL_TAGS[0])]
+    | Annotated[SpiralControlPoints, Tag(SPIRAL_TAGS[1])],
+    Discriminator(_spiral_tag),
+]
+
+
+class GcodeRequest(RequestModel):
+    """Ask for a G-code program (RS-274) of the arc spline."""
+
+    feed_rate: float = Field(gt=0, description="Cutting feed rate F, units per minute.")
+    units: Literal["mm", "inch"] = Field(default="mm", description="G21 (mm) or G20 (inch).")
+    decimals: int | None = Field(
+        default=None,
+        ge=MIN_DECIMALS,
+        le=MAX_DECIMALS,
+        description="Decimal places of coordinates (default 4 for mm, 5 for inch).",
+    )
+    arc_format: Literal["ij", "r"] = Field(
+        default="ij", description="Arc centres as I/J offsets (G91.1) or as a radius R."
+    )
+    line_numbers: bool = Field(default=False, description="Number the blocks (N10, N20, ...).")
+    comments: bool = Field(
+        default=False, description="A header with tolerance, strategy and counts."
+    )
+    safe_z: float | None = Field(default=None, description="Retract height for a 2.5-D cut.")
+    cut_z: float | None = Field(default=None, description="Cutting depth for a 2.5-D cut.")
+    plunge_feed_rate: float | None = Field(
+        default=None, gt=0, description="Feed rate of the plunge."
+    )
+    min_arc_length: float | None = Field(
+        default=None, gt=0, description="Arcs shorter than this become G1 where tolerance allows."
+    )
+    max_radius: float | None = Field(
+        default=None, gt=0, description="Arcs flatter than this become G1 where tolerance allows."
+    )
+
+
+class ApproximateRequest(RequestModel):
+    """One spiral to approximate by arcs within ``tolerance``."""
+
+    model_config = ConfigDict(json_schema_extra={"examples": [PAPER_EXAMPLE]})
+
+    spiral: SpiralRequest
+    tolerance: float = Field(gt=0, description="Largest distance allowed from the spiral.")
+    strategy: Strategy = Field(
+        default="subdivide",
+        description="'subdivide': the paper's recursive subdivision; "
+        "'fewest-arcs': the fewest segments within the tolerance.",
+    )
+    gcode: GcodeRequest | None = Field(default=None, description="Also return a G-code program.")
+
+
+class BatchRequest(RequestModel):
+    """Many jobs at once; each is validated on its own, so one bad job spoils nothing else."""
+
+    # Jobs are validated one by one by the route (so that a bad job becomes an error entry);
+    # the schema still shows what each must be.
+    jobs: list[SkipValidation[ApproximateRequest]] = Field(
+        min_length=1, description="Bodies of /v1/approximate; the number is capped (413)."
+    )
+
+
+# -- responses ---------------------------------------------------------------------------
+
+
+class ArcSegmentResponse(ResponseModel):
+    """A circular arc; ``sweep_rad`` is signed (anticlockwise positive)."""
+
+    type: Literal["arc"]
+    start: Vector
+    end: Vector
+    center: Vector
+    radius: float
+    direction: Literal["ccw", "cw"]
+    start_angle_rad: float
+    sweep_rad: float
+    length: float
+    u_start: float
+    u_end: float
+    max_deviation: float
+    u_at_max_deviation: float
+
+
+class LineSegmentResponse(ResponseModel):
+    """A straight segment (where an arc would be numerically flat)."""
+
+    type: Literal["line"]
+    start: Vector
+    end: Vector
+    length: float
+    u_start: float
+    u_end: float
+    max_deviation: float
+    u_at_max_deviation: float
+
+
+SegmentResponse = Annotated[ArcSegmentResponse | LineSegmentResponse, Field(discriminator="type")]
+
+
+class StatsResponse(ResponseModel):
+    """Summary of the arc spline; radii are null when it has no arcs."""
+
+    arc_count: int
+    line_count: int
+    segment_count: int
+    max_deviation: float
+    u_at_max_deviation: float
+    deviation_ratio: float = Field(description="max_deviation / tolerance.")
+    mean_segment_deviation: float
+    spiral_length: float
+    spline_length: float
+    min_radius: float | None
+    max_radius: float | None
+    tolerance: float
+    strategy: Strategy
+
+
+class ApproximateResponse(ResponseModel):
+    """The arc spline in path order, its statistics, and the G-code program if asked for."""
+
+    segments: list[SegmentResponse]
+    stats: StatsResponse
+    gcode: str | None
+
+
+class ProblemErrorResponse(ResponseModel):
+    """One reason a request was refused: where (``loc``) and why."""
+
+    loc: list[str | int] = Field(description="Path of the field, e.g. ['body', 'tolerance'].")
+    msg: str
+    type: str
+
+
+class ProblemResponse(ResponseModel):
+    """RFC 9457 problem details (``application/problem+json``)."""
+
+    type: str = Field(description="URI of the kind of problem.")
+    title: str
+    status: int
+    detail: str
+    request_id: str | None = None
+    errors: list[ProblemErrorResponse] | None = None
+    limit: float | None = Field(default=None, description="The limit that was crossed, if any.")
+
+
+class BatchOkResponse(ResponseModel):
+    status: Literal["ok"]
+    result: ApproximateResponse
+
+
+class BatchErrorResponse(ResponseModel):
+    status: Literal["error"]
+    error: ProblemResponse
+
+
+class BatchResponse(ResponseModel):
+    """One entry per job, in the order of the jobs."""
+
+    results: list[Annotated[BatchOkResponse | BatchErrorResponse, Field(discriminator="status")]]
+
+
+class HealthResponse(ResponseModel):
+    status: Literal["ok"]
+
+
+class ReadyResponse(ResponseModel):
+    status: Literal["ready"]
+    workers: int
+    in_flight: int
+    queue_capacity: int

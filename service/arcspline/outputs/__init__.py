@@ -1,0 +1,1 @@
+"""What an arc spline is turned into: programs and pictures."""

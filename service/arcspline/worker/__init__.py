@@ -1,0 +1,1 @@
+"""The worker processes: the pool that runs jobs, and the jobs themselves."""
