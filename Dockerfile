@@ -60,19 +60,35 @@ RUN --mount=type=secret,id=ca \
     echo /opt/app >"$site/arcspline-app.pth"
 
 # ---------------------------------------------------------------------------------------------
-# builder: the project itself (`pip install --no-deps .`), into /opt/app, which the venv's
-# arcspline-app.pth puts on sys.path.
+# builder: the project itself, its geometry kernels compiled (Cython, C++) with the pinned
+# build requirements (requirements/build.lock), into /opt/app, which the venv's
+# arcspline-app.pth puts on sys.path. The compiler stays in this stage.
 FROM deps AS builder
+RUN --mount=type=secret,id=ca \
+    set -eu; \
+    export DEBIAN_FRONTEND=noninteractive; \
+    if [ -s /run/secrets/ca ]; then set -- -o Acquire::https::CAInfo=/run/secrets/ca; fi; \
+    apt-get "$@" update; \
+    apt-get "$@" install -y --no-install-recommends g++ python3-dev; \
+    rm -rf /var/lib/apt/lists/*
 WORKDIR /src
-COPY pyproject.toml README.md* ./
-COPY service ./service
+COPY requirements/build.lock requirements/build.lock
 RUN --mount=type=secret,id=ca \
     set -eu; \
     if [ -s /run/secrets/ca ]; then \
         export PIP_CERT=/run/secrets/ca REQUESTS_CA_BUNDLE=/run/secrets/ca SSL_CERT_FILE=/run/secrets/ca; \
     fi; \
     python3 -m venv /opt/build; \
-    /opt/build/bin/pip install --no-deps --target /opt/app . ; \
+    /opt/build/bin/pip install --only-binary=:all: -r requirements/build.lock
+COPY pyproject.toml setup.py README.md* ./
+COPY service ./service
+RUN --mount=type=secret,id=ca \
+    set -eu; \
+    if [ -s /run/secrets/ca ]; then \
+        export PIP_CERT=/run/secrets/ca REQUESTS_CA_BUNDLE=/run/secrets/ca SSL_CERT_FILE=/run/secrets/ca; \
+    fi; \
+    /opt/build/bin/pip install --no-deps --no-build-isolation --target /opt/app . ; \
+    find /opt/app -name '*.so' -exec strip --strip-unneeded {} +; \
     python -m compileall -q /opt/app; \
     cd / && python -c "import arcspline.__main__, arcspline.api.app, numpy, fastapi, uvicorn"
 

@@ -4,10 +4,13 @@ PYTHON ?= python3
 VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
+# The compiled geometry kernels (Cython): rebuilt in place whenever a .pyx or .pxd changes.
+KERNEL_SOURCES := $(shell find service -name '*.pyx' -o -name '*.pxd')
+KERNELS := $(VENV)/.kernels
 HOST   ?= 127.0.0.1
 PORT   ?= 8000
 
-.PHONY: help install run test lint typecheck pytest bench openapi lock image image-test clean
+.PHONY: help install kernels run test lint typecheck pytest bench openapi lock image image-test clean
 
 help:
 	@echo "make run         start the service on $(HOST):$(PORT) (installs into .venv first)"
@@ -17,43 +20,54 @@ help:
 	@echo "make image       build the container image arcspline:local (podman)"
 	@echo "make image-test  build, run and check the image and the Kubernetes Deployment"
 	@echo "make lock        re-resolve requirements/*.lock from pyproject.toml"
+	@echo "make kernels     rebuild the compiled kernels after editing a .pyx or .pxd"
 
-install: $(STAMP)
+install: $(KERNELS)
 
 $(STAMP): pyproject.toml requirements/dev.lock
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install -q --upgrade pip
 	$(BIN)/python -m pip install -q -r requirements/dev.lock
-	$(BIN)/python -m pip install -q --no-deps -e .
+	$(BIN)/python setup.py -q build_ext --inplace -j 2
+	$(BIN)/python -m pip install -q --no-deps --no-build-isolation -e .
 	touch $@
 
-run: $(STAMP)
+kernels: $(KERNELS)
+
+$(KERNELS): $(STAMP) setup.py $(KERNEL_SOURCES)
+	$(BIN)/python setup.py -q build_ext --inplace -j 2
+	touch $@
+
+run: $(KERNELS)
 	$(BIN)/python -m arcspline --host $(HOST) --port $(PORT)
 
 lint: $(STAMP)
 	$(BIN)/ruff check service tests bench scripts
 	$(BIN)/ruff format --check service tests bench scripts
+	PATH="$(CURDIR)/$(BIN):$$PATH" $(BIN)/cython-lint --max-line-length 100 $(KERNEL_SOURCES)
 
-typecheck: $(STAMP)
+typecheck: $(KERNELS)
 	$(BIN)/mypy
 
-pytest: $(STAMP)
+pytest: $(KERNELS)
 	$(BIN)/python -m pytest -n 2 --dist loadgroup
 
 test: lint typecheck pytest
 
-bench: $(STAMP)
+bench: $(KERNELS)
 	$(BIN)/python bench/core.py
 	$(BIN)/python bench/fewest.py
 	$(BIN)/python bench/service.py
 
-openapi: $(STAMP)
+openapi: $(KERNELS)
 	$(BIN)/python -m arcspline.api.export openapi/openapi.json
 
 lock: $(STAMP)
 	$(BIN)/python -m pip install -q uv
 	$(BIN)/uv pip compile pyproject.toml -q --python-version 3.11 --no-header --annotation-style line -o requirements/runtime.lock
 	$(BIN)/uv pip compile pyproject.toml --extra dev -q --python-version 3.11 --no-header --annotation-style line -o requirements/dev.lock
+	$(BIN)/python -c "import tomllib; print(*tomllib.load(open('pyproject.toml', 'rb'))['build-system']['requires'], sep='\n')" \
+		| $(BIN)/uv pip compile - -q --python-version 3.11 --no-header --annotation-style line -o requirements/build.lock
 
 image:
 	scripts/image.sh build
@@ -63,4 +77,5 @@ image-test: $(STAMP)
 	scripts/image.sh test
 
 clean:
-	rm -rf $(VENV) .cache .pytest_cache .mypy_cache .ruff_cache .hypothesis
+	rm -rf $(VENV) .cache .pytest_cache .mypy_cache .ruff_cache .hypothesis build
+	find service \( -name '*.so' -o -name '*.cpp' \) -delete

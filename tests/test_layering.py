@@ -1,9 +1,11 @@
-"""The pure packages stay pure: the geometry core and the G-code writer import only the
-standard library, numpy and each other (house style: api → worker → geometry/gcode)."""
+"""The layers stay apart (house style: api → worker → outputs → geometry, never the other
+way): the geometry core and the outputs import only the standard library, numpy, the C
+libraries of their compiled kernels and the layers below them."""
 
 from __future__ import annotations
 
 import ast
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -12,32 +14,49 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 PACKAGE = ROOT / "service" / "arcspline"
-PURE = [
-    *sorted((PACKAGE / "geometry").rglob("*.py")),
-    *sorted((PACKAGE / "outputs").rglob("*.py")),
-]
+#: Each pure layer and the package prefixes it may import from.
+LAYERS = {
+    "geometry": ("arcspline.geometry",),
+    "outputs": ("arcspline.geometry", "arcspline.outputs"),
+}
 ALLOWED_THIRD_PARTY = {"numpy"}
+#: What Cython sources cimport from the compiler's own declarations.
+CYTHON_BUILTINS = {"libc", "libcpp", "cython", "cpython"}
+SOURCES = [
+    (layer, path)
+    for layer in LAYERS
+    for pattern in ("*.py", "*.pyx", "*.pxd")
+    for path in sorted((PACKAGE / layer).rglob(pattern))
+]
+_CYTHON_IMPORT = re.compile(r"^\s*(?:from\s+(\S+)\s+c?import|c?import\s+(\S+))", re.MULTILINE)
 
 
-def _imported_roots(path: Path) -> set[str]:
-    roots = set()
-    for node in ast.walk(ast.parse(path.read_text(), str(path))):
+def _imported(path: Path) -> set[str]:
+    """Absolute module names imported (and, for Cython, cimported) by ``path``."""
+    text = path.read_text()
+    if path.suffix != ".py":
+        return {m for pair in _CYTHON_IMPORT.findall(text) for m in pair if m and m != "."}
+    names = set()
+    for node in ast.walk(ast.parse(text, str(path))):
         if isinstance(node, ast.Import):
-            roots.update(alias.name.split(".")[0] for alias in node.names)
+            names.update(alias.name for alias in node.names)
         elif isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
-            roots.add(node.module.split(".")[0])
-    return roots
+            names.add(node.module)
+    return names
 
 
-@pytest.mark.parametrize("path", [p for p in PURE if p.exists()], ids=lambda p: p.name)
-def test_pure_module_imports_only_stdlib_numpy_and_arcspline(path: Path) -> None:
-    foreign = {
-        name
-        for name in _imported_roots(path)
-        if name not in sys.stdlib_module_names
-        and name not in ALLOWED_THIRD_PARTY
-        and name != "arcspline"
-    }
+@pytest.mark.parametrize(
+    ("layer", "path"), SOURCES, ids=[str(p.relative_to(PACKAGE)) for _, p in SOURCES]
+)
+def test_pure_layers_import_only_below_them(layer: str, path: Path) -> None:
+    foreign = set()
+    for name in _imported(path):
+        root = name.split(".")[0]
+        if root == "arcspline":
+            if not name.startswith(LAYERS[layer]):
+                foreign.add(name)
+        elif root not in sys.stdlib_module_names | ALLOWED_THIRD_PARTY | CYTHON_BUILTINS:
+            foreign.add(name)
     assert not foreign, f"{path.name} imports {sorted(foreign)}"
 
 

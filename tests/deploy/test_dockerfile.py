@@ -101,7 +101,8 @@ def test_dockerignore_lets_in_what_the_build_copies() -> None:
         for line in (ROOT / ".dockerignore").read_text().splitlines()
         if line.startswith("!")
     }
-    assert {"pyproject.toml", "requirements/runtime.lock", "service"} <= allowed
+    needed = {"pyproject.toml", "setup.py", "requirements/runtime.lock", "requirements/build.lock"}
+    assert {*needed, "service"} <= allowed
 
 
 def test_image_script_is_valid_bash() -> None:

@@ -20,7 +20,7 @@ from fastapi import APIRouter, Request
 from starlette.responses import Response
 
 from arcspline.geometry import ArcSpline, GeometryError, Spiral
-from arcspline.geometry.types import FloatArray
+from arcspline.geometry.spline import FloatArray
 from arcspline.worker.jobs import preview_spline
 
 from .errors import ProblemError, problem_responses

@@ -24,7 +24,7 @@ from pydantic import (
     field_validator,
 )
 
-from arcspline.geometry import Strategy
+from arcspline.geometry import StrategyName
 from arcspline.outputs.gcode import MAX_DECIMALS, MIN_DECIMALS
 
 #: The paper's example (Walton & Meek 1996, Table 1): 12 arcs at this tolerance.
@@ -153,7 +153,7 @@ class ApproximateRequest(RequestModel):
 
     spiral: SpiralRequest
     tolerance: float = Field(gt=0, description="Largest distance allowed from the spiral.")
-    strategy: Strategy = Field(
+    strategy: StrategyName = Field(
         default="subdivide",
         description="'subdivide': the paper's recursive subdivision; "
         "'fewest-arcs': the fewest segments within the tolerance.",
@@ -223,7 +223,7 @@ class StatsResponse(ResponseModel):
     min_radius: float | None
     max_radius: float | None
     tolerance: float
-    strategy: Strategy
+    strategy: StrategyName
 
 
 class ApproximateResponse(ResponseModel):

@@ -1,30 +1,44 @@
-"""The pure geometry core: standard library and numpy only, no web imports.
+"""The pure geometry core: standard library, numpy and its own compiled kernels; no web
+imports.
 
-Conventions, stated once: points and vectors are ``(..., 2)`` float64 arrays or
-:class:`Point`; angles are radians unless the name ends in ``_deg``; anticlockwise is
-positive (signed sweeps, signed curvature); ``u`` is the spiral's Bézier parameter in
-``[0, 1]``. The method is Walton & Meek (1996), restated in
-``shared/spec/walton-meek-1996.md``; section numbers (§) in docstrings refer to it.
+Conventions, stated once: points are ``(..., 2)`` float64 arrays or :class:`Point`; angles
+are radians unless the name ends in ``_deg``; anticlockwise is positive (signed sweeps,
+signed curvature); ``u`` is a curve's parameter in ``[0, 1]``. The method is Walton & Meek
+(1996), restated with every formula the code uses in ``docs/method.md``; section numbers (§)
+in docstrings refer to it.
+
+Layout: ``curves/`` (curve types), ``fit/`` (strategies, compiled), ``maths/`` (roots,
+quadrature), ``spline.py`` (results), ``limits.py``, ``errors.py``, ``approximate.py`` (the
+entry points).
 """
 
-from .approximate import (
-    DEFAULT_LIMITS,
-    STRATEGIES,
-    Limits,
-    Strategy,
-    approximate,
-    approximate_many,
-    min_tolerance,
-)
+from .approximate import approximate, approximate_many
+from .curves import Curve, Spiral
 from .errors import GeometryError
-from .spiral import Spiral
-from .types import ArcSegment, ArcSpline, LineSegment, Point, Segment, SegmentColumns, SplineStats
+from .fit import STRATEGIES, StrategyName
+from .limits import DEFAULT_LIMITS, Limits, min_tolerance
+from .spline import (
+    COLUMN,
+    ArcSegment,
+    ArcSpline,
+    LineSegment,
+    Point,
+    Segment,
+    SegmentColumns,
+    SplineStats,
+)
+
+#: The strategy names (a registry's keys), for messages and schemas.
+STRATEGY_NAMES: tuple[str, ...] = tuple(STRATEGIES)
 
 __all__ = [
+    "COLUMN",
     "DEFAULT_LIMITS",
     "STRATEGIES",
+    "STRATEGY_NAMES",
     "ArcSegment",
     "ArcSpline",
+    "Curve",
     "GeometryError",
     "Limits",
     "LineSegment",
@@ -33,7 +47,7 @@ __all__ = [
     "SegmentColumns",
     "Spiral",
     "SplineStats",
-    "Strategy",
+    "StrategyName",
     "approximate",
     "approximate_many",
     "min_tolerance",

@@ -20,11 +20,12 @@ import numpy as np
 import orjson
 
 from arcspline.geometry import (
+    COLUMN,
     ArcSpline,
     GeometryError,
     Limits,
     Spiral,
-    Strategy,
+    StrategyName,
     approximate,
     approximate_many,
 )
@@ -57,7 +58,7 @@ class Job(NamedTuple):
 
     spiral: SpiralSpec
     tolerance: float
-    strategy: Strategy = "subdivide"
+    strategy: StrategyName = "subdivide"
     gcode: GcodeOptions | None = None
 
 
@@ -84,42 +85,54 @@ def build_spiral(spec: SpiralSpec) -> Spiral:
     )
 
 
+_IS_ARC, _SX, _SY, _EX, _EY, _CX, _CY, _RADIUS = (
+    COLUMN[name]
+    for name in ("is_arc", "start_x", "start_y", "end_x", "end_y", "center_x", "center_y", "radius")
+)
+_ANGLE, _SWEEP, _LENGTH, _U0, _U1, _DEV, _U_DEV = (
+    COLUMN[name]
+    for name in (
+        "start_angle_rad", "sweep_rad", "length", "u_start", "u_end", "max_deviation",
+        "u_at_max_deviation",
+    )
+)  # fmt: skip
+
+
 def encode(spline: ArcSpline, gcode: str | None) -> Encoded | GeometryError:
     """The ``ApproximateResponse`` body of ``spline`` as JSON bytes (an error if not finite).
 
-    Built from the spline's plain values (``ArcSpline.values``: one conversion per column,
-    or none for a spline assembled in floats) and serialised by orjson: no per-segment model
-    objects, which a 1000-spiral batch would otherwise spend most of its time building.
+    Built from the spline's rows as plain values (``ArcSpline.values``: one conversion for
+    the table) and serialised by orjson: no per-segment model objects, which a 1000-spiral
+    batch would otherwise spend most of its time building.
     """
-    rows = spline.values()
     segments = [
         {
             "type": "arc",
-            "start": start,
-            "end": end,
-            "center": center,
-            "radius": radius,
-            "direction": "ccw" if sweep > 0.0 else "cw",
-            "start_angle_rad": angle,
-            "sweep_rad": sweep,
-            "length": length,
-            "u_start": u0,
-            "u_end": u1,
-            "max_deviation": dev,
-            "u_at_max_deviation": u_dev,
+            "start": [r[_SX], r[_SY]],
+            "end": [r[_EX], r[_EY]],
+            "center": [r[_CX], r[_CY]],
+            "radius": r[_RADIUS],
+            "direction": "ccw" if r[_SWEEP] > 0.0 else "cw",
+            "start_angle_rad": r[_ANGLE],
+            "sweep_rad": r[_SWEEP],
+            "length": r[_LENGTH],
+            "u_start": r[_U0],
+            "u_end": r[_U1],
+            "max_deviation": r[_DEV],
+            "u_at_max_deviation": r[_U_DEV],
         }
-        if is_arc
+        if r[_IS_ARC]
         else {
             "type": "line",
-            "start": start,
-            "end": end,
-            "length": length,
-            "u_start": u0,
-            "u_end": u1,
-            "max_deviation": dev,
-            "u_at_max_deviation": u_dev,
+            "start": [r[_SX], r[_SY]],
+            "end": [r[_EX], r[_EY]],
+            "length": r[_LENGTH],
+            "u_start": r[_U0],
+            "u_end": r[_U1],
+            "max_deviation": r[_DEV],
+            "u_at_max_deviation": r[_U_DEV],
         }
-        for is_arc, start, end, center, radius, angle, sweep, length, u0, u1, dev, u_dev in rows
+        for r in spline.values()
     ]
     s = spline.stats
     stats = {
@@ -202,7 +215,7 @@ def approximate_chunk(jobs: Sequence[Job], limits: Limits) -> list[JobResult]:
     """Many jobs in one task, in order: one ``approximate_many`` call per strategy."""
     results: list[JobResult | None] = [None] * len(jobs)
     spirals: dict[int, Spiral] = {}
-    by_strategy: dict[Strategy, list[int]] = {}
+    by_strategy: dict[StrategyName, list[int]] = {}
     for i, job in enumerate(jobs):
         try:
             spirals[i] = build_spiral(job.spiral)

@@ -1,4 +1,4 @@
-"""One arc on the lattice (``encode_arc``), and the exact chord distance (``chord_deviation``).
+"""One arc on the lattice (``encode_arc``).
 
 Arcs of any sweep are built here from a centre, a radius and two angles, rounded as the
 writer rounds end points, encoded, and read back by the independent reader.
@@ -11,11 +11,8 @@ import math
 import numpy as np
 import pytest
 
-from arcspline.outputs.gcode import HALF_CIRCLE_MARGIN_DEG, ArcWords, chord_deviation, encode_arc
+from arcspline.outputs.gcode import HALF_CIRCLE_MARGIN_DEG, ArcWords, encode_arc
 from tests.support import gcode_reader
-
-from . import readback
-from .cases import spiral, spline
 
 
 def _arc(
@@ -143,22 +140,3 @@ def test_r_form_avoids_half_circles_and_is_negative_past_them(sweep_deg: float) 
 def test_encode_refuses_coinciding_ends() -> None:
     with pytest.raises(ValueError, match="distinct"):
         encode_arc((5, 5), (5, 5), (0.0, 0.0), 1.0, 0.1, 3)
-
-
-@pytest.mark.parametrize("name", ["paper", "sharp", "straight"])
-def test_chord_deviation_is_the_sampled_maximum(name: str) -> None:
-    s = spiral(name)
-    for seg in spline(name).segments:
-        exact = chord_deviation(s, seg.u_start, seg.u_end, seg.start, seg.end)
-        sampled = readback.chord_deviation_sampled(s, seg.u_start, seg.u_end, seg.start, seg.end)
-        assert exact == pytest.approx(sampled, rel=1e-7, abs=1e-12 * s.coordinate_scale)
-    # Off the piece's own end points it is still the distance to the line: compare with a
-    # shifted chord.
-    seg = spline(name).segments[0]
-    shifted = (seg.start[0] + 1e-3, seg.start[1] - 2e-3)
-    exact = chord_deviation(s, seg.u_start, seg.u_end, shifted, seg.end)
-    u = np.linspace(seg.u_start, seg.u_end, 20001)
-    p = s.eval(u)
-    a, b = np.array(shifted), np.array(seg.end)
-    n = np.array([-(b - a)[1], (b - a)[0]]) / np.hypot(*(b - a))
-    assert exact == pytest.approx(float(np.max(np.abs((p - a) @ n))), rel=1e-7)

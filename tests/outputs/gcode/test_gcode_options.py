@@ -104,7 +104,7 @@ def test_spline_that_breaks_its_stated_tolerance_is_refused_not_written() -> Non
     # A real approximation labelled with a tolerance it does not keep: the writer measures
     # every block itself and will not vouch for the program.
     real = spline("paper")
-    mislabelled = ArcSpline(real.columns, real.stats, real.tolerance / 100, real.strategy)
+    mislabelled = ArcSpline(real.table, real.stats, real.tolerance / 100, real.strategy)
     with pytest.raises(GcodeError) as caught:
         write_program(mislabelled, spiral("paper"), GcodeOptions(feed_rate=600, decimals=6))
     assert caught.value.field == "decimals"

@@ -22,7 +22,7 @@ Rounding, which is where controllers reject programs, follows fixed rules:
   chord (sagitta below ``q/2``) is cut as ``G1`` too, unless that line would leave the
   bound below while the arc keeps it. ``min_arc_length`` and ``max_radius`` turn further
   arcs into lines, but only where the chord stays within the tolerance of the spiral
-  (:func:`chord_deviation`, exact, from :mod:`arcspline.geometry.chord`).
+  (measured exactly by the curve, ``Curve.line_deviations``).
 * ``R`` form uses ``R`` only away from half circles (:data:`HALF_CIRCLE_MARGIN_DEG`), negative
   beyond 180°; other arcs keep ``I``/``J`` (``G91.1`` is in every preamble for that reason).
 
@@ -38,8 +38,6 @@ Modules: :mod:`.options` (the options and :class:`GcodeError`), :mod:`.lattice` 
 units in the last place, fixed-point text), :mod:`.arcs` (the words of one arc), :mod:`.plan`
 (the choice and exact check of every block), :mod:`.program` (the text).
 """
-
-from arcspline.geometry.chord import chord_deviation
 
 from .arcs import HALF_CIRCLE_MARGIN_DEG, MAX_ARC_WORD, ArcWords, encode_arc
 from .options import (
@@ -74,7 +72,6 @@ __all__ = [
     "GcodeError",
     "GcodeOptions",
     "Units",
-    "chord_deviation",
     "encode_arc",
     "write_program",
 ]

@@ -11,8 +11,7 @@ from typing import NamedTuple
 import numpy as np
 import numpy.typing as npt
 
-from arcspline.geometry import ArcSpline, SegmentColumns, Spiral
-from arcspline.geometry.chord import chord_deviations, circle_deviations
+from arcspline.geometry import ArcSpline, Curve, SegmentColumns
 
 from .arcs import MAX_ARC_WORD, ArcRows, ArcWords, encode_rows, words_at
 from .lattice import FloatArray, IntArray, to_lattice
@@ -60,7 +59,7 @@ def _flat_arcs(cols: SegmentColumns, decimals: int) -> npt.NDArray[np.bool_]:
 
 
 def _optional_lines(
-    spline: ArcSpline, spiral: Spiral, options: GcodeOptions
+    spline: ArcSpline, curve: Curve, options: GcodeOptions
 ) -> npt.NDArray[np.bool_]:
     """Arcs that ``min_arc_length``/``max_radius`` ask for as lines, where the chord keeps
     within the tolerance (measured before rounding, like the arcs themselves)."""
@@ -73,15 +72,15 @@ def _optional_lines(
     wanted &= cols.is_arc
     rows = np.flatnonzero(wanted)
     if len(rows):
-        dev = chord_deviations(
-            spiral, cols.u_start[rows], cols.u_end[rows], cols.start[rows], cols.end[rows]
+        dev = curve.line_deviations(
+            cols.u_start[rows], cols.u_end[rows], cols.start[rows], cols.end[rows]
         )
         wanted[rows[dev > spline.tolerance]] = False
     return wanted
 
 
 def _measure(
-    spiral: Spiral,
+    curve: Curve,
     cols: SegmentColumns,
     rounded: FloatArray,
     rows: IntArray,
@@ -94,14 +93,11 @@ def _measure(
     is_line = np.array([w is None for w in arcs], dtype=np.bool_)
     if np.any(is_line):
         r = rows[is_line]
-        dev[is_line] = chord_deviations(
-            spiral, u0[is_line], u1[is_line], rounded[r], rounded[r + 1]
-        )
+        dev[is_line] = curve.line_deviations(u0[is_line], u1[is_line], rounded[r], rounded[r + 1])
     words = [w for w in arcs if w is not None]
     if words:
         on = ~is_line
-        dev[on] = circle_deviations(
-            spiral,
+        dev[on] = curve.circle_deviations(
             u0[on],
             u1[on],
             np.array([w.centre for w in words], dtype=np.float64),
@@ -113,26 +109,25 @@ def _measure(
     return dev
 
 
-def plan_program(spline: ArcSpline, spiral: Spiral, options: GcodeOptions) -> Plan:
+def plan_program(spline: ArcSpline, curve: Curve, options: GcodeOptions) -> Plan:
     """One block per segment: the first of its choices whose read-back path stays within
     ``tolerance + q`` of its spiral piece, measuring all segments at once per round."""
     d = options.resolved_decimals
     cols = spline.columns
     n = len(cols)
-    control = np.asarray(spiral.control_points, dtype=np.float64)
-    if not np.all(np.abs(control) < MAX_COORDINATE):
+    if not curve.coordinate_scale < MAX_COORDINATE:
         raise GcodeError(
             "spiral", f"has coordinates beyond ±{MAX_COORDINATE:g}, too large to write"
         )
     # Joints are rounded once each, so consecutive blocks meet exactly; the ends are the
-    # spiral's own B0 and B3.
-    joints = np.concatenate([control[:1], cols.start[1:], control[3:]], axis=0)
+    # curve's own end points.
+    joints = np.concatenate([[curve.start], cols.start[1:], [curve.end_point]], axis=0)
     lattice = to_lattice(joints, d)
     rounded = lattice / 10.0**d
     start, end = lattice[:-1], lattice[1:]
     limit = spline.tolerance + 10.0**-d
     must = _must_be_lines(cols, start, end, d)
-    prefer = _flat_arcs(cols, d) | _optional_lines(spline, spiral, options)
+    prefer = _flat_arcs(cols, d) | _optional_lines(spline, curve, options)
     choices: list[list[ArcWords | None]] = [[None] for _ in range(n)]
     rows = np.flatnonzero(~must)
     if len(rows):
@@ -149,7 +144,7 @@ def plan_program(spline: ArcSpline, spiral: Spiral, options: GcodeOptions) -> Pl
     rank = np.zeros(n, dtype=np.int64)
     rows = np.arange(n)
     while len(rows):
-        deviation[rows] = _measure(spiral, cols, rounded, rows, [chosen[i] for i in rows])
+        deviation[rows] = _measure(curve, cols, rounded, rows, [chosen[i] for i in rows])
         over = rows[deviation[rows] > limit]
         rows = np.array([i for i in over if rank[i] + 1 < len(choices[i])], dtype=np.int64)
         for i in rows.tolist():

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from arcspline.geometry import ArcSpline, Spiral
+from arcspline.geometry import ArcSpline, Curve
 
 from .lattice import feed_word, fixed_point
 from .options import GcodeError, GcodeOptions
@@ -66,8 +66,8 @@ def _text(plan: Plan, spline: ArcSpline, options: GcodeOptions) -> Iterator[str]
     yield "M2"
 
 
-def write_program(spline: ArcSpline, spiral: Spiral, options: GcodeOptions) -> str:
-    """The G-code program cutting ``spline``, an approximation of ``spiral``.
+def write_program(spline: ArcSpline, curve: Curve, options: GcodeOptions) -> str:
+    """The G-code program cutting ``spline``, an approximation of ``curve``.
 
     Raises :class:`GcodeError` when the spiral's coordinates are too large to write
     (``spiral``), or when ``options.decimals`` are too coarse for the spline's tolerance: the
@@ -75,7 +75,7 @@ def write_program(spline: ArcSpline, spiral: Spiral, options: GcodeOptions) -> s
     """
     if len(spline) == 0:
         raise GcodeError("spiral", "the arc spline has no segments")
-    lines = list(_text(plan_program(spline, spiral, options), spline, options))
+    lines = list(_text(plan_program(spline, curve, options), spline, options))
     if options.line_numbers:
         coded = [k for k, text in enumerate(lines) if not text.startswith("(")]
         step = 10 if 10 * len(coded) <= MAX_LINE_NUMBER else 1

@@ -1,4 +1,4 @@
-"""The cubic Bézier spiral of Walton & Meek (1996), §1 of ``shared/spec/walton-meek-1996.md``.
+"""The cubic Bézier spiral of Walton & Meek (1996) (docs/method.md §1).
 
 Five parameters define it: start point ``B0``, unit start tangent ``T0``, turn angle
 ``0 < θ < 90°`` and end curvature ``c ≠ 0`` (``c < 0`` turns clockwise: the mirror image)::
@@ -18,7 +18,6 @@ results back.
 
 from __future__ import annotations
 
-import itertools
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -26,10 +25,10 @@ from functools import cached_property
 
 import numpy as np
 
-from . import canonical
-from .arclength import canonical_lengths
-from .errors import GeometryError
-from .types import FloatArray, Point
+from ..errors import GeometryError
+from ..spline import FloatArray, Point
+from . import bezier
+from .canonical import length as canonical_length
 
 #: Control points are accepted as "of the paper's form" when each condition holds to this
 #: relative accuracy: enough for coordinates printed with ~7 significant digits.
@@ -226,20 +225,30 @@ class Spiral:
         """The largest coordinate magnitude of the control points (for rounding margins)."""
         return max(abs(v) for point in self._points for v in point)
 
+    @cached_property
+    def frame(self) -> tuple[float, ...]:
+        """What the kernels need of the spiral, in ``fit.batch.FRAME_FIELDS`` order: the
+        similarity from the canonical spiral (``B0``, ``T0``, ``a``, the turning direction),
+        θ, the stored end point ``B3``, the chord and the coordinate scale."""
+        (x0, y0), (tx, ty), (x3, y3) = self.start, self.start_tangent, self.end_point
+        return (
+            x0, y0, tx, ty, self.a, float(self.turn_direction), self.turn_angle_rad,
+            x3, y3, self.chord, self.coordinate_scale,
+        )  # fmt: skip
+
     # -- evaluation (Bernstein form) ---------------------------------------------------
 
     def eval(self, u: float | FloatArray) -> FloatArray:
         """``Q(u)`` by de Casteljau; shape ``(..., 2)`` for ``u`` of shape ``(...)``."""
-        return _bernstein(self.control_points, np.asarray(u, dtype=np.float64))
+        return bezier.point(self.control_points, u)
 
     def deriv(self, u: float | FloatArray) -> FloatArray:
         """``Q'(u)``."""
-        return _bernstein(3.0 * np.diff(self.control_points, axis=0), np.asarray(u, np.float64))
+        return bezier.derivative(self.control_points, u)
 
     def deriv2(self, u: float | FloatArray) -> FloatArray:
         """``Q''(u)``."""
-        second = 6.0 * np.diff(self.control_points, n=2, axis=0)
-        return _bernstein(second, np.asarray(u, dtype=np.float64))
+        return bezier.second_derivative(self.control_points, u)
 
     def curvature(self, u: float | FloatArray) -> FloatArray:
         """Signed curvature ``κ = Q'×Q'' / ‖Q'‖³`` (positive turning left)."""
@@ -249,16 +258,25 @@ class Spiral:
         return result
 
     def arclen(self, u0: float = 0.0, u1: float = 1.0) -> float:
-        """Arc length over ``[u0, u1]``: the canonical length (``arcspline.geometry.arclength``,
-        Gauss–Legendre on panels graded towards ``u1``) times the scale ``a``."""
-        k, m = canonical.coefficients(np.array([self.turn_angle_rad]))
-        return self.a * float(canonical_lengths(k, m, u0, u1)[0])
+        """Arc length over ``[u0, u1]``: the canonical spiral's (Gauss–Legendre on panels
+        graded towards ``u1``, docs/method.md §6) times the scale ``a``."""
+        return self.a * canonical_length(self.turn_angle_rad, u0, u1)
 
+    def line_deviations(
+        self, u0: FloatArray, u1: FloatArray, start: FloatArray, end: FloatArray
+    ) -> FloatArray:
+        """Exact largest distance from each piece ``[u0, u1]`` to the line ``start→end``
+        (:func:`~arcspline.geometry.curves.bezier.line_deviations`)."""
+        return bezier.line_deviations(self.control_points, u0, u1, start, end)
 
-def _bernstein(points: FloatArray, u: FloatArray) -> FloatArray:
-    """de Casteljau's algorithm on ``points`` (``(n+1, 2)``) at every ``u``."""
-    w = u[..., None]
-    layer = [np.broadcast_to(p, (*u.shape, 2)) for p in points]
-    while len(layer) > 1:
-        layer = [(1.0 - w) * p + w * q for p, q in itertools.pairwise(layer)]
-    return np.array(layer[0], dtype=np.float64)
+    def circle_deviations(
+        self,
+        u0: FloatArray,
+        u1: FloatArray,
+        centre: FloatArray,
+        r_start: FloatArray,
+        r_end: FloatArray,
+    ) -> FloatArray:
+        """Exact largest distance from each piece ``[u0, u1]`` to the farther of two circles
+        about ``centre`` (:func:`~arcspline.geometry.curves.bezier.circle_deviations`)."""
+        return bezier.circle_deviations(self.control_points, u0, u1, centre, r_start, r_end)

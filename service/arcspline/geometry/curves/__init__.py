@@ -1,0 +1,59 @@
+"""Curve types: one module each (today the Walton–Meek spiral, ``spiral.py``).
+
+A curve is an immutable value that the rest of the package uses through :class:`Curve`:
+the fitting kernels read its :attr:`~Curve.frame`; the G-code planner measures its pieces
+against lines and circles; the preview draws it.
+"""
+
+from __future__ import annotations
+
+from typing import Protocol
+
+from ..spline import FloatArray, Point
+from .spiral import Spiral
+
+
+class Curve(Protocol):
+    """What the package needs of a curve (the parameter ``u`` runs over ``[0, 1]``)."""
+
+    @property
+    def frame(self) -> tuple[float, ...]:
+        """The kernels' input row (``fit.batch.FRAME_FIELDS``)."""
+
+    @property
+    def start(self) -> Point:
+        """The point at ``u = 0``, exactly as given."""
+
+    @property
+    def end_point(self) -> Point:
+        """The point at ``u = 1``, exactly as stored."""
+
+    @property
+    def chord(self) -> float:
+        """Distance between the end points: the reference of relative tolerances."""
+
+    @property
+    def coordinate_scale(self) -> float:
+        """The largest coordinate magnitude that defines the curve (for rounding margins)."""
+
+    def eval(self, u: float | FloatArray) -> FloatArray:
+        """Points at ``u``: shape ``(..., 2)`` for ``u`` of shape ``(...)``."""
+
+    def line_deviations(
+        self, u0: FloatArray, u1: FloatArray, start: FloatArray, end: FloatArray
+    ) -> FloatArray:
+        """Exact largest distance from each piece ``[u0, u1]`` to the line ``start→end``."""
+
+    def circle_deviations(
+        self,
+        u0: FloatArray,
+        u1: FloatArray,
+        centre: FloatArray,
+        r_start: FloatArray,
+        r_end: FloatArray,
+    ) -> FloatArray:
+        """Exact largest distance from each piece ``[u0, u1]`` to the farther of two circles
+        about ``centre``."""
+
+
+__all__ = ["Curve", "Spiral"]
