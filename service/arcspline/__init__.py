@@ -1,1 +1,83 @@
-"""arcspline: arc-spline approximation of cubic Bézier spirals for CNC tool paths."""
+"""arcspline: arc splines for CNC tool paths — circular arcs (and, where an arc would be
+numerically flat, lines) that follow a curve within a tolerance, with certified deviations.
+
+The Python API (the HTTP service, the benchmarks and the tests use the same)::
+
+    >>> import arcspline
+    >>> spiral = arcspline.Spiral.from_parameters(
+    ...     start=(1.5, 3.0), start_tangent=(1.0, 0.0), turn_angle_deg=51.34,
+    ...     end_curvature=0.41574)
+    >>> spline = arcspline.approximate(spiral, 0.001)
+    >>> len(spline), spline.stats.arc_count
+    (12, 12)
+    >>> spline.stats.max_deviation <= 0.001
+    True
+    >>> len(arcspline.approximate(spiral, 0.001, strategy="fewest-arcs"))
+    7
+
+* **Curves** — :class:`Spiral` (Walton & Meek's cubic Bézier spiral) by its five parameters
+  (:meth:`Spiral.from_parameters`) or its four control points
+  (:meth:`Spiral.from_control_points`); both validate and raise :class:`GeometryError`.
+* **Approximation** — :func:`approximate` (one curve; raises :class:`GeometryError`) and
+  :func:`approximate_many` (many in one compiled loop; each failure in its place), with a
+  strategy from :data:`STRATEGIES` (``"subdivide"``: the paper's method; ``"fewest-arcs"``)
+  and :class:`Limits` (segment cap, smallest relative tolerance; :func:`min_tolerance`).
+* **Results** — :class:`ArcSpline`: ``segments`` (:class:`ArcSegment`, :class:`LineSegment`),
+  ``columns`` (:class:`SegmentColumns`, numpy views), ``table`` (one row per segment,
+  :data:`COLUMN`), ``stats`` (:class:`SplineStats`), ``tolerance`` and ``strategy``.
+* **Outputs** — ``arcspline.outputs``: a G-code program (``outputs.gcode.write_program``) and
+  an SVG picture (``outputs.svg.render_svg``).
+
+Conventions: points are ``(x, y)``; angles in radians unless a name ends in ``_deg``;
+anticlockwise is positive; ``u`` is the curve's parameter in ``[0, 1]``. The method, with
+every formula the code uses, is in ``docs/method.md``. ``python -m arcspline`` starts the
+HTTP service.
+"""
+
+from importlib.metadata import PackageNotFoundError, version
+
+from .geometry import (
+    COLUMN,
+    DEFAULT_LIMITS,
+    STRATEGIES,
+    STRATEGY_NAMES,
+    ArcSegment,
+    ArcSpline,
+    GeometryError,
+    Limits,
+    LineSegment,
+    Point,
+    Segment,
+    SegmentColumns,
+    Spiral,
+    SplineStats,
+    approximate,
+    approximate_many,
+    min_tolerance,
+)
+
+try:
+    __version__ = version("arcspline")
+except PackageNotFoundError:  # pragma: no cover - running from a source tree
+    __version__ = "0+unknown"
+
+__all__ = [
+    "COLUMN",
+    "DEFAULT_LIMITS",
+    "STRATEGIES",
+    "STRATEGY_NAMES",
+    "ArcSegment",
+    "ArcSpline",
+    "GeometryError",
+    "Limits",
+    "LineSegment",
+    "Point",
+    "Segment",
+    "SegmentColumns",
+    "Spiral",
+    "SplineStats",
+    "__version__",
+    "approximate",
+    "approximate_many",
+    "min_tolerance",
+]

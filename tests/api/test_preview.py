@@ -9,7 +9,7 @@ from typing import Any
 import httpx
 import pytest
 
-from arcspline.api.preview import COLOURS, nice_number
+from arcspline.outputs.svg import COLOURS, nice_number
 
 from .conftest import locs, problem_of
 

@@ -78,7 +78,7 @@ def test_the_response_model_accepts_what_the_worker_encodes(
 ) -> None:
     spiral = Spiral.from_parameters((1.5, 3.0), (1.0, 0.0), 51.34, 0.41574)
     spline = approximate(spiral, tolerance, strategy)  # type: ignore[arg-type]
-    encoded = encode(spline, "G0 X0 Y0\nM2\n")
+    encoded = encode(spline, {"gcode": "G0 X0 Y0\nM2\n"})
     assert isinstance(encoded, Encoded)
     body = json.loads(encoded.body)
     model = ApproximateResponse.model_validate(body)

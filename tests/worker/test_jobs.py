@@ -14,20 +14,20 @@ from arcspline.geometry import (
     GeometryError,
     Limits,
     Spiral,
+    SpiralFromControlPoints,
+    SpiralFromParameters,
     approximate,
 )
 from arcspline.outputs.gcode import GcodeOptions
 from arcspline.worker.jobs import (
-    ControlPointsSpec,
     Encoded,
     Job,
-    ParametersSpec,
     approximate_chunk,
     approximate_one,
     encode,
 )
 
-PAPER = ParametersSpec(
+PAPER = SpiralFromParameters(
     start=(1.5, 3.0), start_tangent=(1.0, 0.0), turn_angle_deg=51.34, end_curvature=0.41574
 )
 
@@ -38,7 +38,7 @@ def _paper_spiral() -> Spiral:
 
 def test_encode_writes_every_field_of_every_segment() -> None:
     spline = approximate(_paper_spiral(), 1e-3)
-    encoded = encode(spline, None)
+    encoded = encode(spline, {})
     assert isinstance(encoded, Encoded)
     body = json.loads(encoded.body)
     c = spline.columns
@@ -72,7 +72,7 @@ def test_lines_carry_no_centre_or_radius() -> None:
     # A turn of 1e-9° is numerically straight: the core answers with lines.
     spiral = Spiral.from_parameters((0.0, 0.0), (1.0, 0.0), 1e-9, 1.0)
     spline = approximate(spiral, spiral.chord * 1e-3)
-    encoded = encode(spline, None)
+    encoded = encode(spline, {})
     assert isinstance(encoded, Encoded)
     body = json.loads(encoded.body)
     assert body["stats"]["line_count"] == len(body["segments"]) > 0
@@ -104,14 +104,16 @@ def test_approximate_one_returns_the_body_or_the_error() -> None:
     assert capped.kind == "segment_limit"
     assert capped.limit == 10
     bad = approximate_one(
-        Job(ControlPointsSpec(((0, 0), (1, 0), (3, 0), (4, 1))), 0.1), DEFAULT_LIMITS
+        Job(SpiralFromControlPoints(((0, 0), (1, 0), (3, 0), (4, 1))), 0.1), DEFAULT_LIMITS
     )
     assert isinstance(bad, GeometryError)
     assert bad.field == "control_points"
 
 
 def test_approximate_one_adds_the_program_when_asked() -> None:
-    result = approximate_one(Job(PAPER, 0.1, gcode=GcodeOptions(feed_rate=200.0)), DEFAULT_LIMITS)
+    result = approximate_one(
+        Job(PAPER, 0.1, outputs=(("gcode", GcodeOptions(feed_rate=200.0)),)), DEFAULT_LIMITS
+    )
     assert isinstance(result, Encoded)
     program = json.loads(result.body)["gcode"]
     assert isinstance(program, str)
@@ -123,7 +125,7 @@ def test_a_chunk_answers_each_job_in_order_like_single_jobs() -> None:
         Job(PAPER, 0.1),
         Job(PAPER, 1e-14),
         Job(PAPER, 0.01, "fewest-arcs"),
-        Job(ControlPointsSpec(((0, 0), (1, 0), (3, 0), (4, 1))), 0.1),
+        Job(SpiralFromControlPoints(((0, 0), (1, 0), (3, 0), (4, 1))), 0.1),
         Job(PAPER, 1e-4),
         Job(PAPER, 1e-3, "fewest-arcs"),
     ]
@@ -146,7 +148,7 @@ def test_a_result_with_a_non_finite_number_is_refused_not_sent(column: str) -> N
     spline = approximate(_paper_spiral(), 1e-2)
     broken = spline.table.copy()
     broken[1, COLUMN[column]] = np.nan
-    error = encode(ArcSpline(broken, spline.stats, spline.tolerance, spline.strategy), None)
+    error = encode(ArcSpline(broken, spline.stats, spline.tolerance, spline.strategy), {})
     assert isinstance(error, GeometryError)
     assert (error.kind, error.field) == ("precision", "spiral")
 
@@ -156,7 +158,7 @@ def test_a_result_with_a_non_finite_number_is_refused_not_sent(column: str) -> N
 def test_a_degenerate_spiral_never_yields_nan() -> None:
     # Found by schemathesis: a turn of 6e-307° at coordinates of 1e16 collapses the control
     # points; at a huge tolerance the core once answered with NaN coordinates.
-    spec = ParametersSpec(
+    spec = SpiralFromParameters(
         start=(-1.1959078817986156e16, -6.3419143617633e16),
         start_tangent=(3.5640755264004884e16, 10000.0),
         turn_angle_deg=5.831373173582048e-307,

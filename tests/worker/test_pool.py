@@ -12,8 +12,8 @@ from typing import Any
 
 import pytest
 
-from arcspline.geometry import DEFAULT_LIMITS
-from arcspline.worker.jobs import Encoded, Job, ParametersSpec, approximate_chunk, approximate_one
+from arcspline.geometry import DEFAULT_LIMITS, SpiralFromParameters
+from arcspline.worker.jobs import Encoded, Job, approximate_chunk, approximate_one
 from arcspline.worker.pool import (
     Coalescer,
     JobTimeoutError,
@@ -23,7 +23,7 @@ from arcspline.worker.pool import (
     chunk_sizes,
 )
 
-PAPER = ParametersSpec(
+PAPER = SpiralFromParameters(
     start=(1.5, 3.0), start_tangent=(1.0, 0.0), turn_angle_deg=51.34, end_curvature=0.41574
 )
 

@@ -24,7 +24,7 @@ from pydantic import (
     field_validator,
 )
 
-from arcspline.geometry import StrategyName
+from arcspline.geometry import SpiralFromControlPoints, SpiralFromParameters, StrategyName
 from arcspline.outputs.gcode import MAX_DECIMALS, MIN_DECIMALS
 
 #: The paper's example (Walton & Meek 1996, Table 1): 12 arcs at this tolerance.
@@ -86,6 +86,15 @@ class SpiralParameters(RequestModel):
             raise ValueError("must be non-zero (its sign is the turning direction)")
         return value
 
+    def spec(self) -> SpiralFromParameters:
+        """The core's value for this spiral (built and checked in a worker)."""
+        return SpiralFromParameters(
+            start=(self.start[0], self.start[1]),
+            start_tangent=(self.start_tangent[0], self.start_tangent[1]),
+            turn_angle_deg=self.turn_angle_deg,
+            end_curvature=self.end_curvature,
+        )
+
 
 class SpiralControlPoints(RequestModel):
     """Four Bézier control points of the paper's form.
@@ -95,6 +104,10 @@ class SpiralControlPoints(RequestModel):
     """
 
     control_points: list[Vector] = Field(min_length=4, max_length=4)
+
+    def spec(self) -> SpiralFromControlPoints:
+        """The core's value for this spiral (built and checked in a worker)."""
+        return SpiralFromControlPoints(tuple((p[0], p[1]) for p in self.control_points))
 
 
 #: Tags of the spiral union; they appear in validation paths and the API removes them.

@@ -6,32 +6,26 @@ from typing import Any
 
 from arcspline.geometry import GeometryError
 from arcspline.outputs.gcode import GcodeError, GcodeOptions
-from arcspline.worker.jobs import ControlPointsSpec, Job, ParametersSpec, SpiralSpec
+from arcspline.worker.jobs import Job, Output
 
 from .errors import Loc, ProblemError, gcode_problem, geometry_problem
-from .schemas import ApproximateRequest, SpiralParameters
+from .schemas import ApproximateRequest
 
 
-def to_job(request: ApproximateRequest, prefix: Loc, *, gcode: bool = True) -> Job:
-    """The worker's job for ``request``; G-code options the writer refuses raise a 422."""
-    spiral = request.spiral
-    spec: SpiralSpec
-    if isinstance(spiral, SpiralParameters):
-        spec = ParametersSpec(
-            start=(spiral.start[0], spiral.start[1]),
-            start_tangent=(spiral.start_tangent[0], spiral.start_tangent[1]),
-            turn_angle_deg=spiral.turn_angle_deg,
-            end_curvature=spiral.end_curvature,
-        )
-    else:
-        spec = ControlPointsSpec(tuple((p[0], p[1]) for p in spiral.control_points))
-    options = None
-    if gcode and request.gcode is not None:
-        try:
-            options = GcodeOptions(**request.gcode.model_dump())
-        except GcodeError as error:
-            raise ProblemError(gcode_problem(error, prefix)) from None
-    return Job(spiral=spec, tolerance=request.tolerance, strategy=request.strategy, gcode=options)
+def to_job(
+    request: ApproximateRequest, prefix: Loc, outputs: tuple[Output, ...] | None = None
+) -> Job:
+    """The worker's job for ``request``: its curve, tolerance and strategy, and ``outputs``
+    (by default the G-code program the request asks for; options the writer refuses raise a
+    422)."""
+    if outputs is None:
+        outputs = ()
+        if request.gcode is not None:
+            try:
+                outputs = (("gcode", GcodeOptions(**request.gcode.model_dump())),)
+            except GcodeError as error:
+                raise ProblemError(gcode_problem(error, prefix)) from None
+    return Job(request.spiral.spec(), request.tolerance, request.strategy, outputs)
 
 
 def job_problem(error: GeometryError | GcodeError, prefix: Loc) -> dict[str, Any]:

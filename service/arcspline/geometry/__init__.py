@@ -13,7 +13,7 @@ entry points).
 """
 
 from .approximate import approximate, approximate_many
-from .curves import Curve, Spiral
+from .curves import Curve, CurveSpec, Spiral, SpiralFromControlPoints, SpiralFromParameters
 from .errors import GeometryError
 from .fit import STRATEGIES, StrategyName
 from .limits import DEFAULT_LIMITS, Limits, min_tolerance
@@ -39,6 +39,7 @@ __all__ = [
     "ArcSegment",
     "ArcSpline",
     "Curve",
+    "CurveSpec",
     "GeometryError",
     "Limits",
     "LineSegment",
@@ -46,6 +47,8 @@ __all__ = [
     "Segment",
     "SegmentColumns",
     "Spiral",
+    "SpiralFromControlPoints",
+    "SpiralFromParameters",
     "SplineStats",
     "StrategyName",
     "approximate",

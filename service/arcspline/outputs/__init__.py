@@ -1,1 +1,37 @@
-"""What an arc spline is turned into: programs and pictures."""
+"""What an arc spline is turned into: each output a writer behind one protocol.
+
+A writer is a module with a ``WRITER`` (:class:`Writer`) and one line in :data:`WRITERS`:
+``gcode`` (an RS-274 program, ``gcode/``) and ``svg`` (a picture of the approximation,
+``svg.py``). Writers are pure: the curve, its arc spline and the writer's options in, text
+out; what they refuse they raise as their own error (:class:`~.gcode.GcodeError`) or a
+:class:`~arcspline.geometry.GeometryError`.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Protocol
+
+from arcspline.geometry import ArcSpline, Curve
+
+from . import gcode, svg
+
+
+class Writer(Protocol):
+    """Turns an approximation into a document of one format."""
+
+    @property
+    def name(self) -> str:
+        """The output's name in requests and responses."""
+
+    @property
+    def media_type(self) -> str:
+        """The document's media type."""
+
+    def write(self, spline: ArcSpline, curve: Curve, options: Any) -> str:
+        """The document of ``spline``, an approximation of ``curve``."""
+
+
+#: The writers by name.
+WRITERS: dict[str, Writer] = {writer.name: writer for writer in (gcode.WRITER, svg.WRITER)}
+
+__all__ = ["WRITERS", "Writer"]

@@ -1,65 +1,53 @@
 """The jobs the worker processes run: pure functions, picklable in and out.
 
-A job is a spiral (by its parameters or its control points), a tolerance, a strategy and
-optional G-code options. The functions here build the core's spiral, approximate it (one job,
-or a chunk of jobs through the core's vectorised ``approximate_many``), add the G-code program
-and serialise the response body to JSON, all inside the worker, so that encoding runs in
-parallel too. A job the core or the G-code writer refuses returns its error as a value.
+A job is a curve (as its request gave it, a :class:`~arcspline.geometry.CurveSpec`), a
+tolerance, a strategy and the outputs asked for (writer name and options, see
+``arcspline.outputs``). The functions here build the curve, approximate it (one job, or a
+chunk of jobs through the core's ``approximate_many``), write the outputs and serialise the
+response body to JSON, all inside the worker, so that encoding runs in parallel too. A job
+the core or a writer refuses returns its error as a value.
 
-Dependency direction: ``arcspline.worker.pool`` runs these; they import only the geometry core,
-the G-code writer, numpy and orjson, never the web stack.
+Dependency direction: ``arcspline.worker.pool`` runs these; they import only the geometry
+core, the outputs, numpy and orjson, never the web stack.
 """
 
 from __future__ import annotations
 
-import math
 from collections.abc import Sequence
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
-import numpy as np
 import orjson
 
 from arcspline.geometry import (
     COLUMN,
     ArcSpline,
+    Curve,
+    CurveSpec,
     GeometryError,
     Limits,
-    Spiral,
     StrategyName,
     approximate,
     approximate_many,
 )
-from arcspline.outputs.gcode import GcodeError, GcodeOptions, write_program
+from arcspline.outputs import WRITERS
+from arcspline.outputs.gcode import GcodeError
 
-# Named tuples rather than frozen dataclasses: thousands of these cross the process boundary
-# per second, and tuples pickle several times faster (no per-field __setstate__).
+#: An output asked for: a writer's name (``arcspline.outputs.WRITERS``) and its options.
+Output = tuple[str, Any]
 
-
-class ParametersSpec(NamedTuple):
-    """A spiral given by the paper's five parameters (§1)."""
-
-    start: tuple[float, float]
-    start_tangent: tuple[float, float]
-    turn_angle_deg: float
-    end_curvature: float
-
-
-class ControlPointsSpec(NamedTuple):
-    """A spiral given by its four Bézier control points."""
-
-    control_points: tuple[tuple[float, float], ...]
-
-
-SpiralSpec = ParametersSpec | ControlPointsSpec
+#: The outputs a JSON response carries, each under its writer's name (``null`` when not
+#: asked for): the fields of the response schema.
+JSON_OUTPUTS = ("gcode",)
 
 
 class Job(NamedTuple):
-    """One approximation request, as the worker needs it."""
+    """One approximation request, as the worker needs it. (A named tuple: thousands cross
+    the process boundary per second, and tuples pickle several times faster.)"""
 
-    spiral: SpiralSpec
+    curve: CurveSpec
     tolerance: float
     strategy: StrategyName = "subdivide"
-    gcode: GcodeOptions | None = None
+    outputs: tuple[Output, ...] = ()
 
 
 class Encoded(NamedTuple):
@@ -70,20 +58,14 @@ class Encoded(NamedTuple):
     line_count: int
 
 
+class Document(NamedTuple):
+    """A job's one output as the whole response (the preview's picture)."""
+
+    body: bytes
+    media_type: str
+
+
 JobResult = Encoded | GeometryError | GcodeError
-
-
-def build_spiral(spec: SpiralSpec) -> Spiral:
-    """The core's spiral for ``spec``; raises :class:`GeometryError` for an invalid one."""
-    if isinstance(spec, ControlPointsSpec):
-        return Spiral.from_control_points(spec.control_points)
-    return Spiral.from_parameters(
-        start=spec.start,
-        start_tangent=spec.start_tangent,
-        turn_angle_deg=spec.turn_angle_deg,
-        end_curvature=spec.end_curvature,
-    )
-
 
 _IS_ARC, _SX, _SY, _EX, _EY, _CX, _CY, _RADIUS = (
     COLUMN[name]
@@ -98,8 +80,9 @@ _ANGLE, _SWEEP, _LENGTH, _U0, _U1, _DEV, _U_DEV = (
 )  # fmt: skip
 
 
-def encode(spline: ArcSpline, gcode: str | None) -> Encoded | GeometryError:
-    """The ``ApproximateResponse`` body of ``spline`` as JSON bytes (an error if not finite).
+def encode(spline: ArcSpline, outputs: dict[str, str]) -> Encoded | GeometryError:
+    """The ``ApproximateResponse`` body of ``spline`` and its written ``outputs`` as JSON
+    bytes (an error if a number is not finite).
 
     Built from the spline's rows as plain values (``ArcSpline.values``: one conversion for
     the table) and serialised by orjson: no per-segment model objects, which a 1000-spiral
@@ -150,13 +133,14 @@ def encode(spline: ArcSpline, gcode: str | None) -> Encoded | GeometryError:
         "tolerance": spline.tolerance,
         "strategy": spline.strategy,
     }
-    body = orjson.dumps({"segments": segments, "stats": stats, "gcode": gcode})
-    # orjson writes NaN and Infinity as null, and no number of this body may be null but the
-    # radii of a spline without arcs: counting nulls before the program proves every number
-    # finite at memchr speed, without another pass over the columns.
-    nulls = body.count(b"null", 0, body.rfind(b'"gcode":'))
-    if nulls != (2 if s.arc_count == 0 else 0):
+    head = orjson.dumps({"segments": segments, "stats": stats})
+    # orjson writes NaN and Infinity as null, and no number of the segments and statistics
+    # may be null but the radii of a spline without arcs: counting nulls proves every number
+    # finite at memchr speed, without another pass over the rows.
+    if head.count(b"null") != (2 if s.arc_count == 0 else 0):
         return _NOT_FINITE
+    texts = orjson.dumps({name: outputs.get(name) for name in JSON_OUTPUTS})
+    body = b"".join((head[:-1], b",", texts[1:]))
     return Encoded(body=body, arc_count=s.arc_count, line_count=s.line_count)
 
 
@@ -169,79 +153,64 @@ _NOT_FINITE = GeometryError(
 )
 
 
-def _finite(spline: ArcSpline) -> ArcSpline | GeometryError:
-    """``spline``, or an error if any number of it is not finite.
-
-    The core vouches for its results; this guard keeps NaN and Infinity out of the responses
-    even so, should a degenerate input slip through.
-    """
-    c, s = spline.columns, spline.stats
-    arcs = c.is_arc
-    columns = (c.start, c.end, c.length, c.u_start, c.u_end, c.max_deviation, c.u_at_max_deviation)
-    stats = (s.max_deviation, s.deviation_ratio, s.mean_segment_deviation, s.spiral_length)
-    finite = (
-        all(bool(np.isfinite(column).all()) for column in columns)
-        and bool(np.isfinite(c.center[arcs]).all() and np.isfinite(c.radius[arcs]).all())
-        and bool(np.isfinite(c.start_angle_rad).all() and np.isfinite(c.sweep_rad).all())
-        and all(math.isfinite(value) for value in (*stats, s.spline_length))
-    )
-    return spline if finite else _NOT_FINITE
-
-
-def _finish(job: Job, spiral: Spiral, spline: ArcSpline) -> JobResult:
-    """Add the G-code program if asked for, and encode."""
-    if job.gcode is None:
-        return encode(spline, None)
-    if isinstance(finite := _finite(spline), GeometryError):
-        return finite
+def _write(job: Job, curve: Curve, spline: ArcSpline) -> dict[str, str] | GcodeError:
+    """Every output the job asks for, by writer name, or the first writer's refusal."""
     try:
-        program = write_program(spline, spiral, job.gcode)
+        return {name: WRITERS[name].write(spline, curve, options) for name, options in job.outputs}
     except GcodeError as error:
         return error
-    return encode(spline, program)
+
+
+def _finish(job: Job, curve: Curve, spline: ArcSpline) -> JobResult:
+    """Write the outputs asked for, and encode."""
+    outputs = _write(job, curve, spline)
+    return outputs if isinstance(outputs, GcodeError) else encode(spline, outputs)
 
 
 def approximate_one(job: Job, limits: Limits) -> JobResult:
     """One job: the encoded response, or the error that names the offending field."""
     try:
-        spiral = build_spiral(job.spiral)
-        spline = approximate(spiral, job.tolerance, job.strategy, limits)
+        curve = job.curve.build()
+        spline = approximate(curve, job.tolerance, job.strategy, limits)
     except GeometryError as error:
         return error
-    return _finish(job, spiral, spline)
+    return _finish(job, curve, spline)
 
 
 def approximate_chunk(jobs: Sequence[Job], limits: Limits) -> list[JobResult]:
     """Many jobs in one task, in order: one ``approximate_many`` call per strategy."""
     results: list[JobResult | None] = [None] * len(jobs)
-    spirals: dict[int, Spiral] = {}
+    curves: dict[int, Curve] = {}
     by_strategy: dict[StrategyName, list[int]] = {}
     for i, job in enumerate(jobs):
         try:
-            spirals[i] = build_spiral(job.spiral)
+            curves[i] = job.curve.build()
         except GeometryError as error:
             results[i] = error
             continue
         by_strategy.setdefault(job.strategy, []).append(i)
     for strategy, indices in by_strategy.items():
         splines = approximate_many(
-            [spirals[i] for i in indices], [jobs[i].tolerance for i in indices], strategy, limits
+            [curves[i] for i in indices], [jobs[i].tolerance for i in indices], strategy, limits
         )
         for i, spline in zip(indices, splines, strict=True):
             if isinstance(spline, GeometryError):
                 results[i] = spline
             else:
-                results[i] = _finish(jobs[i], spirals[i], spline)
+                results[i] = _finish(jobs[i], curves[i], spline)
     done = [r for r in results if r is not None]
     assert len(done) == len(jobs), "every job has a result"
     return done
 
 
-def preview_spline(job: Job, limits: Limits) -> tuple[Spiral, ArcSpline] | GeometryError:
-    """The spiral and its arc spline, for drawing (no G-code, no JSON)."""
+def render(job: Job, limits: Limits) -> Document | GeometryError | GcodeError:
+    """The job's first output as a document of its own (no JSON around it)."""
     try:
-        spiral = build_spiral(job.spiral)
-        spline = _finite(approximate(spiral, job.tolerance, job.strategy, limits))
-    except GeometryError as error:
+        curve = job.curve.build()
+        spline = approximate(curve, job.tolerance, job.strategy, limits)
+        (name, options), *_ = job.outputs
+        writer = WRITERS[name]
+        text = writer.write(spline, curve, options)
+    except (GeometryError, GcodeError) as error:
         return error
-    return spline if isinstance(spline, GeometryError) else (spiral, spline)
+    return Document(body=text.encode(), media_type=writer.media_type)

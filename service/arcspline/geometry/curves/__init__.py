@@ -2,7 +2,8 @@
 
 A curve is an immutable value that the rest of the package uses through :class:`Curve`:
 the fitting kernels read its :attr:`~Curve.frame`; the G-code planner measures its pieces
-against lines and circles; the preview draws it.
+against lines and circles; the preview draws it. A request gives a curve as a
+:class:`CurveSpec`, which builds it.
 """
 
 from __future__ import annotations
@@ -10,7 +11,7 @@ from __future__ import annotations
 from typing import Protocol
 
 from ..spline import FloatArray, Point
-from .spiral import Spiral
+from .spiral import Spiral, SpiralFromControlPoints, SpiralFromParameters
 
 
 class Curve(Protocol):
@@ -56,4 +57,12 @@ class Curve(Protocol):
         about ``centre``."""
 
 
-__all__ = ["Curve", "Spiral"]
+class CurveSpec(Protocol):
+    """A curve as a request gives it: a small picklable value that builds (and validates)
+    the curve where it is needed, in a worker."""
+
+    def build(self) -> Curve:
+        """The curve; raises :class:`~arcspline.geometry.GeometryError` if it is invalid."""
+
+
+__all__ = ["Curve", "CurveSpec", "Spiral", "SpiralFromControlPoints", "SpiralFromParameters"]

@@ -22,6 +22,7 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import cached_property
+from typing import NamedTuple
 
 import numpy as np
 
@@ -280,3 +281,30 @@ class Spiral:
         """Exact largest distance from each piece ``[u0, u1]`` to the farther of two circles
         about ``centre`` (:func:`~arcspline.geometry.curves.bezier.circle_deviations`)."""
         return bezier.circle_deviations(self.control_points, u0, u1, centre, r_start, r_end)
+
+
+# How a request gives a spiral: named tuples (they cross the worker boundary by the
+# thousand, and pickle several times faster than dataclasses); ``build`` validates.
+
+
+class SpiralFromParameters(NamedTuple):
+    """The paper's five parameters (:meth:`Spiral.from_parameters`)."""
+
+    start: tuple[float, float]
+    start_tangent: tuple[float, float]
+    turn_angle_deg: float
+    end_curvature: float
+
+    def build(self) -> Spiral:
+        return Spiral.from_parameters(
+            self.start, self.start_tangent, self.turn_angle_deg, self.end_curvature
+        )
+
+
+class SpiralFromControlPoints(NamedTuple):
+    """Four control points of the paper's form (:meth:`Spiral.from_control_points`)."""
+
+    control_points: tuple[tuple[float, float], ...]
+
+    def build(self) -> Spiral:
+        return Spiral.from_control_points(self.control_points)

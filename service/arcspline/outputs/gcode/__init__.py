@@ -53,7 +53,7 @@ from .options import (
     Units,
 )
 from .plan import MIN_RADIUS_ULPS, MIN_SWEEP_RAD
-from .program import MAX_LINE_NUMBER, write_program
+from .program import MAX_LINE_NUMBER, WRITER, write_program
 
 __all__ = [
     "ARC_FORMATS",
@@ -67,6 +67,7 @@ __all__ = [
     "MIN_RADIUS_ULPS",
     "MIN_SWEEP_RAD",
     "UNITS",
+    "WRITER",
     "ArcFormat",
     "ArcWords",
     "GcodeError",

@@ -86,3 +86,16 @@ def write_program(spline: ArcSpline, curve: Curve, options: GcodeOptions) -> str
         for n, k in enumerate(coded, start=1):
             lines[k] = f"N{n * step} {lines[k]}"
     return "\n".join(lines) + "\n"
+
+
+class GcodeWriter:
+    """The program as an output writer; its options are :class:`GcodeOptions`."""
+
+    name = "gcode"
+    media_type = "text/x-gcode"
+
+    def write(self, spline: ArcSpline, curve: Curve, options: GcodeOptions) -> str:
+        return write_program(spline, curve, options)
+
+
+WRITER = GcodeWriter()
