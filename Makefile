@@ -15,7 +15,7 @@ PORT   ?= 8000
 help:
 	@echo "make run         start the service on $(HOST):$(PORT) (installs into .venv first)"
 	@echo "make test        ruff, mypy and the whole pytest suite"
-	@echo "make bench       benchmarks that print figures (core and service)"
+	@echo "make bench       benchmarks that print figures (core, fewest-arcs, service, start-up)"
 	@echo "make openapi     regenerate openapi/openapi.json from the app"
 	@echo "make image       build the container image arcspline:local (podman)"
 	@echo "make image-test  build, run and check the image and the Kubernetes Deployment"
@@ -58,6 +58,7 @@ bench: $(KERNELS)
 	$(BIN)/python bench/core.py
 	$(BIN)/python bench/fewest.py
 	$(BIN)/python bench/service.py
+	$(BIN)/python bench/startup.py
 
 openapi: $(KERNELS)
 	$(BIN)/python -m arcspline.api.export openapi/openapi.json

@@ -22,15 +22,11 @@ from __future__ import annotations
 import os
 import re
 import shutil
-import signal
-import socket
 import statistics
 import subprocess
 import sys
 import tempfile
 import time
-from collections.abc import Iterator
-from contextlib import contextmanager
 from pathlib import Path
 
 import httpx
@@ -39,8 +35,8 @@ import orjson
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from plain import plain_approximate
+from serve import service
 
-ROOT = Path(__file__).resolve().parents[1]
 POOL_SIZE = 2
 SPIRAL = {
     "start": [1.5, 3.0],
@@ -60,43 +56,6 @@ RATIO_TARGET = 0.5
 #: worker task. 64 is the default queue capacity, the most in flight without a 503.
 SWEEP_CONNECTIONS = (8, 64)
 SPEEDUP_TARGET = 20.0
-
-
-def _free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        port: int = s.getsockname()[1]
-        return port
-
-
-@contextmanager
-def server() -> Iterator[str]:
-    """``python -m arcspline`` with a pool of 2 workers, until the block ends."""
-    port = _free_port()
-    env = {k: v for k, v in os.environ.items() if not k.startswith("ARCSPLINE_")}
-    env["ARCSPLINE_POOL_SIZE"] = str(POOL_SIZE)
-    env["ARCSPLINE_LOG_LEVEL"] = "warning"
-    process = subprocess.Popen(
-        [sys.executable, "-m", "arcspline", "--host", "127.0.0.1", "--port", str(port)],
-        cwd=ROOT,
-        env=env,
-    )
-    url = f"http://127.0.0.1:{port}"
-    try:
-        deadline = time.monotonic() + 60
-        while True:
-            try:
-                if httpx.get(f"{url}/readyz", timeout=2).status_code == 200:
-                    break
-            except httpx.TransportError:
-                pass
-            if process.poll() is not None or time.monotonic() > deadline:
-                raise SystemExit("the server did not start")
-            time.sleep(0.1)
-        yield url
-    finally:
-        process.send_signal(signal.SIGTERM)
-        process.wait(timeout=60)
 
 
 # -- wrk ------------------------------------------------------------------------------------
@@ -238,9 +197,9 @@ def main() -> None:
         raise SystemExit(
             "wrk is not installed: `apt-get install wrk` (Debian/Ubuntu), then run again."
         )
-    with server() as url, tempfile.TemporaryDirectory() as scratch:
-        measure_ratio(binary, url, Path(scratch))
-        measure_batch(binary, url, Path(scratch))
+    with service(POOL_SIZE) as running, tempfile.TemporaryDirectory() as scratch:
+        measure_ratio(binary, running.url, Path(scratch))
+        measure_batch(binary, running.url, Path(scratch))
 
 
 if __name__ == "__main__":

@@ -53,17 +53,15 @@ def approximate_many(
     blocks, where, stats, status, aux = fit(
         frames, tol, limits.max_segments, limits.min_relative_tolerance
     )
-    tol_list = tol.tolist()
-    results: list[ArcSpline | GeometryError] = []
-    for i, (code, (block, begin, end)) in enumerate(
-        zip(status.tolist(), where.tolist(), strict=True)
-    ):
-        if code == _OK:
-            results.append(
-                ArcSpline._of_batch(blocks[block], begin, end, (stats, i), tol_list[i], strategy)
-            )
-        else:
-            results.append(_error(code, curves[i], tolerances[i], limits, aux[i]))
+    of_batch = ArcSpline._of_batch
+    results: list[ArcSpline | GeometryError] = [
+        of_batch(blocks[block], begin, end, stats, i, t, strategy)
+        if code == _OK
+        else _error(code, curves[i], tolerances[i], limits, aux[i])
+        for i, (code, (block, begin, end), t) in enumerate(
+            zip(status.tolist(), where.tolist(), tol.tolist(), strict=True)
+        )
+    ]
     return results
 
 
@@ -79,8 +77,9 @@ def _strategy(name: str) -> FitMany:
 def _tolerances(tolerances: Sequence[float]) -> FloatArray:
     """The tolerances as floats; anything that is not a number becomes NaN (refused by the
     kernels as ``bad_tolerance``, worded from the value given)."""
-    if all(type(t) is float for t in tolerances):
-        return np.array(tolerances, dtype=np.float64)
+    given = np.asarray(tolerances)
+    if given.dtype.kind in "fiub" and given.ndim == 1:  # numbers only: one conversion
+        return given.astype(np.float64)
     return np.array(
         [float(t) if isinstance(t, int | float) else math.nan for t in tolerances],
         dtype=np.float64,

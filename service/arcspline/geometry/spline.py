@@ -15,7 +15,7 @@ spiral's Bézier parameter. A line row (where an arc would be numerically flat) 
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any, ClassVar, Literal, NamedTuple
+from typing import ClassVar, Literal, NamedTuple
 
 import numpy as np
 import numpy.typing as npt
@@ -204,17 +204,14 @@ class ArcSpline:
     public constructor takes a spline's own table.
     """
 
-    __slots__ = ("_begin", "_block", "_end", "_stats", "_stats_rows", "_strategy", "_table",
-                 "_tolerance")  # fmt: skip
+    __slots__ = ("_begin", "_block", "_end", "_index", "_stats", "_strategy", "_tolerance")
 
     def __init__(
         self, table: FloatArray, stats: SplineStats, tolerance: float, strategy: str
     ) -> None:
-        self._table: FloatArray | None = table
-        self._block = table
-        self._begin, self._end = 0, int(table.shape[0])
-        self._stats: SplineStats | None = stats
-        self._stats_rows: Any = None
+        self._block, self._begin, self._end = table, 0, int(table.shape[0])
+        self._stats: SplineStats | FloatArray = stats
+        self._index = -1
         self._tolerance = tolerance
         self._strategy = strategy
 
@@ -224,28 +221,23 @@ class ArcSpline:
         block: FloatArray,
         begin: int,
         end: int,
-        stats_rows: Any,
+        stats: FloatArray,
+        index: int,
         tolerance: float,
         strategy: str,
     ) -> ArcSpline:
-        """The spline of rows ``begin:end`` of a batch's ``block``, whose statistics are
-        row ``index`` of the batch's stats array (``stats_rows = (array, index)``); both
-        are read on first use."""
+        """The spline of rows ``begin:end`` of a batch's ``block``, whose statistics are row
+        ``index`` of the batch's ``stats`` array (read on first use)."""
         spline = cls.__new__(cls)
-        spline._table = None
         spline._block, spline._begin, spline._end = block, begin, end
-        spline._stats = None
-        spline._stats_rows = stats_rows
-        spline._tolerance = tolerance
-        spline._strategy = strategy
+        spline._stats, spline._index = stats, index
+        spline._tolerance, spline._strategy = tolerance, strategy
         return spline
 
     @property
     def table(self) -> FloatArray:
         """The segments, one row each (columns :data:`COLUMN`); read it, do not change it."""
-        if self._table is None:
-            self._table = self._block[self._begin : self._end]
-        return self._table
+        return self._block[self._begin : self._end]
 
     @property
     def columns(self) -> SegmentColumns:
@@ -258,9 +250,8 @@ class ArcSpline:
 
     @property
     def stats(self) -> SplineStats:
-        if self._stats is None:
-            array, index = self._stats_rows
-            self._stats = SplineStats.of(array[index].tolist(), self._tolerance)
+        if not isinstance(self._stats, SplineStats):
+            self._stats = SplineStats.of(self._stats[self._index].tolist(), self._tolerance)
         return self._stats
 
     @property
