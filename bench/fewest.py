@@ -1,9 +1,12 @@
 """Benchmark: ``fewest-arcs`` against ``subdivide`` — segment counts, deviations and times.
 
 Prints (1) the paper's Table 1 spiral at its five tolerances, with the deviation measured
-independently by the test oracle (dense two-sided sampling), and (2) 200 random spirals at
-random relative tolerances: mean counts, their ratio and the time ratio. Run:
-``.venv/bin/python bench/fewest.py``.
+independently by the test oracle (dense two-sided sampling) and the time ratio to
+``subdivide`` (issue 15's target: ≤ 5× at 1e-5); (2) 200 random spirals at random relative
+tolerances: mean counts, their ratio and the time ratio, in one batch and one per call; (3)
+the 2000-spiral benchmark: the same generator, 2000 spirals, fewest-arcs' mean count beside
+the one before issue 15 (the numpy core at commit 9cdb49b, measured with this generator).
+Run: ``.venv/bin/python bench/fewest.py``.
 """
 
 from __future__ import annotations
@@ -26,6 +29,9 @@ PAPER = Spiral.from_parameters(
     start=(1.5, 3.0), start_tangent=(1.0, 0.0), turn_angle_deg=51.34, end_curvature=0.41574
 )
 TOLERANCES = (0.1, 0.01, 1e-3, 1e-4, 1e-5)
+RATIO_TARGET = 5.0  # fewest-arcs ÷ subdivide, paper spiral at 1e-5
+#: fewest-arcs' total over the 2000-spiral benchmark before issue 15 (numpy core, 9cdb49b).
+BEFORE_2000_TOTAL = 10452
 
 
 def table1() -> None:
@@ -51,9 +57,11 @@ def table1() -> None:
         )
         (n0, d0), (n1, d1) = row
         print(
-            f"{tol:>9g} | {n0:>9d} {d0:>12.6g} {t0 * 1e3:>6.2f} | {n1:>6d} {d1:>12.6g} "
-            f"{t1 * 1e3:>6.2f} | {t1 / t0:>9.1f}x"
+            f"{tol:>9g} | {n0:>9d} {d0:>12.6g} {t0 * 1e3:>6.3f} | {n1:>6d} {d1:>12.6g} "
+            f"{t1 * 1e3:>6.3f} | {t1 / t0:>9.1f}x"
         )
+    verdict = "met" if t1 / t0 <= RATIO_TARGET else "NOT met"
+    print(f"target at 1e-5: ≤ {RATIO_TARGET:g}× subdivide — {t1 / t0:.1f}× — {verdict}")
 
 
 def random_spirals(n: int = 200, seed: int = 2026) -> tuple[list[Spiral], list[float]]:
@@ -116,6 +124,20 @@ def random_table() -> None:
     )
 
 
+def benchmark_2000() -> None:
+    spirals, tolerances = random_spirals(2000)
+    results = approximate_many(spirals, tolerances, "fewest-arcs")
+    counts = np.array([len(r) for r in results])  # type: ignore[arg-type]
+    before = BEFORE_2000_TOTAL / len(spirals)
+    verdict = "no higher" if counts.sum() <= BEFORE_2000_TOTAL else "HIGHER"
+    print(
+        f"\n2000-spiral benchmark (this generator, seed 2026): fewest-arcs mean "
+        f"{counts.mean():.4f} ({counts.sum()} segments); before issue 15 {before:.4f} "
+        f"({BEFORE_2000_TOTAL}) — {verdict}"
+    )
+
+
 if __name__ == "__main__":
     table1()
     random_table()
+    benchmark_2000()

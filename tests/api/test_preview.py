@@ -9,7 +9,7 @@ from typing import Any
 import httpx
 import pytest
 
-from arcspline.outputs.svg import COLOURS, nice_number
+from arcspline.outputs.svg import COLOURS
 
 from .conftest import locs, problem_of
 
@@ -45,23 +45,6 @@ async def test_preview_errors_are_problems(client: httpx.AsyncClient) -> None:
     body = {"spiral": {"control_points": [[0, 0], [1, 0]]}, "tolerance": 0.1}
     problem = problem_of(await client.post("/v1/preview", json=body), 422)
     assert ["body", "spiral", "control_points"] in locs(problem)
-
-
-@pytest.mark.parametrize(
-    ("x", "nice"),
-    [
-        (1.0, 1.0),
-        (199.0, 100.0),
-        (200.0, 200.0),
-        (0.07, 0.05),
-        (5e6, 5e6),
-        (1e-320, 1e-300),
-        (0.0, 1e-300),
-        (float("inf"), 1e300),
-    ],
-)
-def test_magnifications_are_round_numbers(x: float, nice: float) -> None:
-    assert nice_number(x) == pytest.approx(nice)
 
 
 async def test_a_spiral_at_the_edge_of_double_precision_draws_or_is_refused(

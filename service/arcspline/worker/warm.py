@@ -11,7 +11,7 @@ forks any worker, so every worker, and every replacement of one, starts warm; wi
 
 from __future__ import annotations
 
-from arcspline.geometry import DEFAULT_LIMITS, SpiralFromParameters
+from arcspline.geometry import DEFAULT_LIMITS, STRATEGIES, SpiralFromParameters
 from arcspline.outputs.gcode import GcodeOptions
 
 from .jobs import Job, approximate_chunk, approximate_one, render
@@ -21,11 +21,10 @@ _SPIRAL = SpiralFromParameters((1.5, 3.0), (1.0, 0.0), 51.34, 0.41574)
 
 
 def warm() -> None:
-    """Run a job of each kind: both strategies, alone and in a chunk, with a G-code program,
+    """Run a job of each kind: every strategy, alone and in a chunk, with a G-code program,
     a refused one, and the preview's picture."""
     jobs = [
-        Job(_SPIRAL, 1e-3),
-        Job(_SPIRAL, 1e-3, "fewest-arcs"),
+        *(Job(_SPIRAL, 1e-3, strategy) for strategy in STRATEGIES),
         Job(_SPIRAL, 1e-3, outputs=(("gcode", GcodeOptions(feed_rate=1000.0)),)),
         Job(_SPIRAL, 1e-300),
     ]
