@@ -1,8 +1,8 @@
 """The baseline: Walton & Meek's method written plainly, one spiral at a time.
 
-This is what a careful reader of ``shared/spec/walton-meek-1996.md`` writes first: pure
-Python floats, the formulas in the order the spec gives them (tangent intersection ``V``,
-incentre, ``r = ‖P − A‖² / (2·(P − A)·N)``), bisection then Newton for Theorem 1's ``t`` and
+This is what a careful reader of ``docs/method.md`` writes first: pure Python floats, the
+formulas in the order it gives them (tangent intersection ``V``, incentre,
+``r = ‖P − A‖² / (2·(P − A)·N)``), bisection then Newton for Theorem 1's ``t`` and
 Theorem 2's quartic roots, and the recursion of §5. It exists so that benchmarks measure the
 core against the same algorithm in the same run; the tests do not use it.
 """
@@ -94,7 +94,7 @@ def make_spiral(start: Vec, tangent: Vec, turn_angle_deg: float, curvature: floa
 
 
 def _root(f, df, lo: float, hi: float) -> float:
-    """Bisection to a narrow bracket, then Newton (the spec's §3–§4 recipe)."""
+    """Bisection to a narrow bracket, then Newton (docs/method.md §3–§4)."""
     flo = f(lo)
     for _ in range(20):
         mid = 0.5 * (lo + hi)

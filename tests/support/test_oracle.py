@@ -16,7 +16,7 @@ STRAIGHT = np.array([[0.0, 0.0], [1.0, 0.0], [2.0, 0.0], [3.0, 0.0]])
 
 
 def paper_form(theta_deg: float, c: float) -> tuple[np.ndarray, float, float]:
-    """The spec's §1 control points from (1.5, 3), T0 = (1, 0): ``(cp, a, b)``."""
+    """The §1 control points (docs/method.md) from (1.5, 3), T0 = (1, 0): ``(cp, a, b)``."""
     th = math.radians(theta_deg)
     a = 25 * math.tan(th) / (54 * abs(c) * math.cos(th))
     b = 5 * math.tan(th) / (9 * abs(c))

@@ -1,4 +1,4 @@
-"""The spiral (spec §1): both input forms, evaluation, curvature, length and bad input.
+"""The spiral (docs/method.md §1): both input forms, evaluation, curvature, length and bad input.
 
 Every expected value is computed here or by the oracle's own Bernstein code, never by the
 class under test.
@@ -50,7 +50,7 @@ def expected_control_points(start, tangent, theta_deg, c) -> np.ndarray:
 
 
 def cross(a, b) -> float:
-    """The scalar ``a×b = ax·by − ay·bx`` (spec notation)."""
+    """The scalar ``a×b = ax·by − ay·bx`` (docs/method.md notation)."""
     return float(a[0] * b[1] - a[1] * b[0])
 
 

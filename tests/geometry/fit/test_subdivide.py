@@ -1,4 +1,5 @@
-"""The paper's Table 1 as an acceptance test (spec §6): exact arc counts, deviations ±0.5 %."""
+"""The paper's Table 1 as an acceptance test (docs/method.md §5): exact arc counts, deviations
+±0.5 %."""
 
 from __future__ import annotations
 
