@@ -17,6 +17,10 @@ from pathlib import Path
 
 import httpx
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+from tests.support.processes import worker_pids
+
 ROOT = Path(__file__).resolve().parents[1]
 
 
@@ -35,17 +39,7 @@ class Service:
     ready_after_s: float
 
     def worker_pids(self) -> list[int]:
-        """The pool's workers: children of the forkserver, itself a child of the server."""
-        parents = {}
-        for entry in Path("/proc").iterdir():
-            if entry.name.isdigit():
-                try:
-                    stat = (entry / "stat").read_text()
-                except OSError:
-                    continue
-                parents[int(entry.name)] = int(stat.rsplit(")", 1)[1].split()[1])
-        children = {pid for pid, parent in parents.items() if parent == self.process.pid}
-        return sorted(pid for pid, parent in parents.items() if parent in children)
+        return worker_pids(self.process.pid)
 
 
 def wait_ready(url: str, process: subprocess.Popen[bytes], timeout_s: float = 60.0) -> None:

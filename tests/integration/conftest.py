@@ -18,6 +18,8 @@ import httpx
 import pytest
 from prometheus_client.parser import text_string_to_metric_families
 
+from tests.support.processes import worker_pids
+
 ROOT = Path(__file__).resolve().parents[2]
 START_TIMEOUT_S = 60.0
 
@@ -27,20 +29,6 @@ def _free_port() -> int:
         s.bind(("127.0.0.1", 0))
         port: int = s.getsockname()[1]
         return port
-
-
-def _parents() -> dict[int, int]:
-    """pid -> parent pid of every process (from /proc)."""
-    parents = {}
-    for entry in Path("/proc").iterdir():
-        if entry.name.isdigit():
-            try:
-                stat = (entry / "stat").read_text()
-            except OSError:
-                continue
-            # The command name may hold spaces; fields after its closing parenthesis do not.
-            parents[int(entry.name)] = int(stat.rsplit(")", 1)[1].split()[1])
-    return parents
 
 
 def parse_metrics(text: str) -> dict[str, float]:
@@ -60,10 +48,7 @@ class Server:
     log: Path
 
     def worker_pids(self) -> list[int]:
-        """The pool's workers: children of the forkserver, itself a child of the server."""
-        parents = _parents()
-        children = {pid for pid, parent in parents.items() if parent == self.process.pid}
-        return sorted(pid for pid, parent in parents.items() if parent in children)
+        return worker_pids(self.process.pid)
 
     def metrics(self) -> dict[str, float]:
         return parse_metrics(httpx.get(f"{self.url}/metrics", timeout=10).text)

@@ -53,3 +53,16 @@ cdef inline double largest(const double* values, int n) noexcept nogil:
         worst = values[i] if values[i] > worst else worst
         nan_seen += values[i] - values[i]
     return worst if nan_seen == 0.0 else INFINITY
+
+
+cdef inline double sampled(
+    Canonical s, Vec j, Vec t, double kappa, double lo, double hi, int samples
+) noexcept nogil:
+    """Largest :func:`screen_radial` of the arc from ``j`` (unit tangent ``t``, curvature
+    ``κ``) at ``samples`` (at most 8) points evenly inside the piece ``[lo, hi]``: screening's
+    lower bound on the arc's deviation; ``inf`` if one is not a number."""
+    cdef double values[8]
+    cdef int k
+    for k in range(samples):
+        values[k] = screen_radial(s, j, -t.y, t.x, kappa, lo + (hi - lo) * ((k + 0.5) / samples))
+    return largest(values, samples)

@@ -27,14 +27,7 @@ from libc.math cimport INFINITY, NAN, ceil, cos, exp, isfinite, log, log2, sin
 from libcpp.vector cimport vector
 
 from arcspline.geometry.curves.canonical cimport Canonical, offset, point, tangent
-from arcspline.geometry.deviation cimport (
-    Peak,
-    arc_deviation,
-    joint_split,
-    largest,
-    screen_radial,
-    split_guess,
-)
+from arcspline.geometry.deviation cimport Peak, arc_deviation, joint_split, sampled, split_guess
 from arcspline.geometry.fit cimport batch
 from arcspline.geometry.fit.arcs cimport OK, Arc, Status
 from arcspline.geometry.fit.sabin cimport Chord, Sabin, chord, sabin_biarc
@@ -188,18 +181,6 @@ cdef inline Biarc biarc(
         b.split = split_guess(s, b.g, b.t.x, b.t.y, u0, u1, 0.5 * (u0 + u1))
     b.ok = sb.ok and u0 < b.split < u1
     return b
-
-
-cdef inline double sampled(
-    Canonical s, Vec j, Vec t, double kappa, double lo, double hi, int samples
-) noexcept nogil:
-    """Largest radial distance of the arc from ``j`` (unit tangent ``t``, curvature ``κ``)
-    at ``samples`` points of the piece ``[lo, hi]``."""
-    cdef double values[SAMPLES]
-    cdef int k
-    for k in range(samples):
-        values[k] = screen_radial(s, j, -t.y, t.x, kappa, lo + (hi - lo) * ((k + 0.5) / samples))
-    return largest(values, samples)
 
 
 cdef inline double screen(Canonical s, const Biarc* b, int samples, double bound) noexcept nogil:

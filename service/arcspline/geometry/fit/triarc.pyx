@@ -18,14 +18,7 @@ the winner is kept only if ``arc_deviation`` proves all three arcs within the to
 from libc.math cimport INFINITY, atan2
 
 from arcspline.geometry.curves.canonical cimport Canonical, offset, point, tangent, unit_tangent
-from arcspline.geometry.deviation cimport (
-    largest,
-    Peak,
-    arc_deviation,
-    joint_split,
-    screen_radial,
-    split_guess,
-)
+from arcspline.geometry.deviation cimport Peak, arc_deviation, joint_split, sampled, split_guess
 from arcspline.geometry.fit.sabin cimport Chord, Sabin, chord, sabin_biarc
 from arcspline.geometry.maths.vec cimport Vec, vec
 
@@ -144,18 +137,6 @@ cdef bint triarc(
     t.s[0], t.s[1], t.s[2], t.s[3] = e.ua, split1, split2, 1.0
     t.kappa[0], t.kappa[1], t.kappa[2] = first.kappa0, b.kappa0, b.kappa1
     return b.ok and e.ua < split1 < split2 < 1.0
-
-
-cdef inline double sampled(
-    Canonical s, Vec j, Vec t, double kappa, double lo, double hi, int samples
-) noexcept nogil:
-    """Largest radial distance of the arc from ``j`` (unit tangent ``t``, curvature ``κ``)
-    at ``samples`` points of the piece ``[lo, hi]``."""
-    cdef double values[SAMPLES]
-    cdef int k
-    for k in range(samples):
-        values[k] = screen_radial(s, j, -t.y, t.x, kappa, lo + (hi - lo) * ((k + 0.5) / samples))
-    return largest(values, samples)
 
 
 cdef struct Screen:
