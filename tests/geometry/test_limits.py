@@ -226,11 +226,17 @@ def test_batch_edge_cases() -> None:
         approximate_many([PAPER, PAPER], [1e-3])
 
 
-@pytest.mark.parametrize("end_curvature", [5e-324, -1e-310])
-def test_a_curvature_so_small_the_size_overflows_says_so(end_curvature: float) -> None:
+@pytest.mark.parametrize(
+    ("end_curvature", "turn_angle_deg"),
+    # At 89.5° the denominator 54·|c|·cos θ itself underflows to 0 (found by schemathesis).
+    [(5e-324, 50.0), (-1e-310, 50.0), (5e-324, 89.5)],
+)
+def test_a_curvature_so_small_the_size_overflows_says_so(
+    end_curvature: float, turn_angle_deg: float
+) -> None:
     # |c| is finite and non-zero; it is the size a ~ 1/c that leaves double precision.
     with pytest.raises(GeometryError, match=r"size a = -?inf, outside the supported") as caught:
-        Spiral.from_parameters((0.0, 0.0), (1.0, 0.0), 50.0, end_curvature)
+        Spiral.from_parameters((0.0, 0.0), (1.0, 0.0), turn_angle_deg, end_curvature)
     assert caught.value.field == "end_curvature"
     assert caught.value.kind == "invalid_input"
 

@@ -179,14 +179,17 @@ class Spiral:
 
     @cached_property
     def a(self) -> float:
-        """``|B1 − B0|``: also the scale of the canonical frame."""
+        """``|B1 − B0|``: also the scale of the canonical frame (``inf`` where a curvature
+        of denormal size makes the denominator vanish; :meth:`from_parameters` refuses it)."""
         th = self.turn_angle_rad
-        return 25.0 * math.tan(th) / (54.0 * abs(self.end_curvature) * math.cos(th))
+        denominator = 54.0 * abs(self.end_curvature) * math.cos(th)
+        return 25.0 * math.tan(th) / denominator if denominator > 0.0 else math.inf
 
     @cached_property
     def b(self) -> float:
         """``|B3 − B2|``."""
-        return 5.0 * math.tan(self.turn_angle_rad) / (9.0 * abs(self.end_curvature))
+        denominator = 9.0 * abs(self.end_curvature)
+        return 5.0 * math.tan(self.turn_angle_rad) / denominator if denominator > 0.0 else math.inf
 
     @cached_property
     def end_tangent(self) -> Point:

@@ -230,7 +230,9 @@ cdef bint best_triarc(Canonical s, double ua, double tolerance, Triarc* out) noe
     cdef double width[3]
     width[0], width[1], width[2] = span * 0.07, tolerance * 0.5, 0.1
     cdef double decay = 1.0, lo = ua + 1e-9 * span, hi = 1.0 - 1e-9 * span
-    cdef double round_best, round_centre[3]
+    cdef double round_best
+    cdef double round_centre[3]
+    round_centre[0], round_centre[1], round_centre[2] = centre[0], centre[1], centre[2]
     for _round in range(ROUNDS):
         # Refine only a candidate still above the target and not hopeless.
         if not GOOD * tolerance < best < (1.0 + (HOPELESS - 1.0) * decay) * tolerance:
