@@ -8,7 +8,7 @@ response body to JSON, all inside the worker, so that encoding runs in parallel 
 the core or a writer refuses returns its error as a value.
 
 Dependency direction: ``arcspline.worker.pool`` runs these; they import only the geometry
-core, the outputs, numpy and orjson, never the web stack.
+core, the outputs and orjson, never the web stack.
 """
 
 from __future__ import annotations

@@ -20,7 +20,7 @@ worker can be killed and replaced alone:
 - :meth:`WorkerPool.drain` waits for in-flight work, then stops the workers.
 
 :class:`Coalescer` sends single jobs that arrive while every worker is busy to a worker
-together, as one task: under load one vectorised call of the core serves many requests (and
+together, as one task: under load one compiled loop of the core serves many requests (and
 one round trip to a worker), while an idle service still starts each job at once.
 
 Dependency direction: the API imports this module; this module and ``arcspline.worker.jobs`` import
@@ -223,7 +223,7 @@ class WorkerPool:
         self.running = 0
         self._context: Any = multiprocessing.get_context(start_method)
         if start_method == "forkserver":
-            # Workers fork from a server that has imported numpy and the core already.
+            # Workers fork from a server that has imported the core and warmed it (warm.py).
             self._context.set_forkserver_preload([__name__, *PRELOAD])
         self._workers: list[_Worker] = []
         # Idle workers; one that died while waiting here is skipped when taken.
