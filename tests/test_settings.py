@@ -51,6 +51,8 @@ def test_environment_variables_with_the_prefix_are_read(monkeypatch: pytest.Monk
         ("ARCSPLINE_MAX_BODY_BYTES", "lots"),
         ("ARCSPLINE_LOG_LEVEL", "loud"),
         ("ARCSPLINE_START_METHOD", "fork"),
+        ("ARCSPLINE_MAX_SEGMENTS", "3000000000"),
+        ("ARCSPLINE_MIN_RELATIVE_TOLERANCE", "1"),
     ],
 )
 def test_bad_values_are_refused(monkeypatch: pytest.MonkeyPatch, name: str, value: str) -> None:

@@ -15,6 +15,7 @@ from pydantic import Field, PositiveFloat, PositiveInt, model_validator
 from pydantic_settings import BaseSettings, SettingsConfigDict
 
 from arcspline.geometry import DEFAULT_LIMITS, Limits
+from arcspline.geometry.limits import MAX_SEGMENTS
 
 LogLevel = Literal["critical", "error", "warning", "info", "debug"]
 StartMethod = Literal["forkserver", "spawn"]
@@ -72,10 +73,12 @@ class Settings(BaseSettings):
     )
     max_segments: PositiveInt = Field(
         default=DEFAULT_LIMITS.max_segments,
+        le=MAX_SEGMENTS,
         description="Most segments in one arc spline (422 beyond).",
     )
     min_relative_tolerance: PositiveFloat = Field(
         default=DEFAULT_LIMITS.min_relative_tolerance,
+        lt=1.0,
         description="Smallest tolerance accepted, as a fraction of the spiral's chord.",
     )
     retry_after_s: PositiveInt = Field(

@@ -54,6 +54,25 @@ def test_segment_cap_refuses_naming_the_limit() -> None:
     assert "segment" in err.message
 
 
+@pytest.mark.parametrize(
+    "limits",
+    [
+        {"max_segments": 0},
+        {"max_segments": -1},
+        {"max_segments": 2**31},
+        {"max_segments": 10.0},
+        {"max_segments": True},
+        {"min_relative_tolerance": 0.0},
+        {"min_relative_tolerance": 1.0},
+        {"min_relative_tolerance": float("nan")},
+    ],
+    ids=str,
+)
+def test_limits_the_kernels_cannot_take_are_refused(limits: dict[str, float]) -> None:
+    with pytest.raises(ValueError, match=next(iter(limits))):
+        Limits(**limits)  # type: ignore[arg-type]
+
+
 def test_segment_cap_is_inclusive() -> None:
     # Table 1: 54 arcs at 1e-5. A cap of 54 admits it; 53 does not.
     spline = approximate(PAPER, 1e-5, limits=Limits(max_segments=54))
@@ -139,8 +158,8 @@ def test_a_stricter_relative_floor_from_limits() -> None:
 
 @pytest.mark.parametrize(
     "tolerance",
-    [float("nan"), float("inf"), float("-inf"), 0.0, -0.0, -1e-3, "0.01", None],
-    ids=["nan", "inf", "-inf", "zero", "-zero", "negative", "string", "none"],
+    [float("nan"), float("inf"), float("-inf"), 0.0, -0.0, -1e-3, "0.01", None, np.float32(1e-3)],
+    ids=["nan", "inf", "-inf", "zero", "-zero", "negative", "string", "none", "float32"],
 )
 def test_bad_tolerance_names_the_field(tolerance: object) -> None:
     with pytest.raises(GeometryError) as info:
@@ -178,6 +197,15 @@ def test_a_bad_request_in_a_batch_is_returned_in_place() -> None:
     for j in (0, 2, 4):
         assert_same(results[j], approximate(spirals[j], tolerances[j]))
     assert [len(r) for r in results if isinstance(r, ArcSpline)] == [12, 26, 54]
+
+
+def test_a_tolerance_that_is_not_a_number_in_a_batch_is_returned_in_place() -> None:
+    results = approximate_many([PAPER, PAPER, PAPER], [1e-3, "1e-3", 1e-2])  # type: ignore[list-item]
+    assert isinstance(results[1], GeometryError)
+    assert (results[1].field, results[1].kind) == ("tolerance", "invalid_input")
+    assert "'1e-3'" in results[1].message
+    assert_same(results[0], approximate(PAPER, 1e-3))
+    assert_same(results[2], approximate(PAPER, 1e-2))
 
 
 def test_a_capped_request_in_a_batch_is_returned_in_place() -> None:

@@ -75,11 +75,11 @@ def _strategy(name: str) -> FitMany:
 
 
 def _tolerances(tolerances: Sequence[float]) -> FloatArray:
-    """The tolerances as floats; anything that is not a number becomes NaN (refused by the
-    kernels as ``bad_tolerance``, worded from the value given)."""
-    given = np.asarray(tolerances)
-    if given.dtype.kind in "fiub" and given.ndim == 1:  # numbers only: one conversion
-        return given.astype(np.float64)
+    """The tolerances as floats; anything that is not a Python number (``int`` or ``float``,
+    numpy's float64 included) becomes NaN, refused by the kernels as ``bad_tolerance`` and
+    worded from the value given."""
+    if set(map(type, tolerances)) <= {float}:  # the common case: one conversion
+        return np.array(tolerances, dtype=np.float64)
     return np.array(
         [float(t) if isinstance(t, int | float) else math.nan for t in tolerances],
         dtype=np.float64,
@@ -90,9 +90,8 @@ def _error(
     code: int, curve: Curve, tolerance: object, limits: Limits, aux: FloatArray
 ) -> GeometryError:
     """The error of a curve the kernels refused, with its message."""
-    if code == _BAD_TOLERANCE:
+    if code == _BAD_TOLERANCE or not isinstance(tolerance, int | float):
         return GeometryError("tolerance", f"must be a finite number > 0, got {tolerance!r}")
-    assert isinstance(tolerance, int | float)
     why = _STATUS_NAME[code]
     if why == "tolerance_floor":
         floor = min_tolerance(curve, limits)

@@ -11,6 +11,10 @@ if TYPE_CHECKING:
     from .curves import Curve
 
 
+#: The largest segment limit the kernels take (a C ``int``).
+MAX_SEGMENTS = 2**31 - 1
+
+
 @dataclass(frozen=True, slots=True)
 class Limits:
     """``max_segments`` caps the segments of one arc spline. ``min_relative_tolerance`` is
@@ -20,6 +24,13 @@ class Limits:
 
     max_segments: int = 10_000
     min_relative_tolerance: float = 1e-10
+
+    def __post_init__(self) -> None:
+        count = self.max_segments
+        if isinstance(count, bool) or not isinstance(count, int) or not 1 <= count <= MAX_SEGMENTS:
+            raise ValueError(f"max_segments must be an integer in [1, {MAX_SEGMENTS}]")
+        if not 0.0 < self.min_relative_tolerance < 1.0:
+            raise ValueError("min_relative_tolerance must lie strictly between 0 and 1")
 
 
 DEFAULT_LIMITS = Limits()

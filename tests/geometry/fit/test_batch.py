@@ -72,3 +72,25 @@ def test_lines_where_arcs_would_be_numerically_flat() -> None:
     np.testing.assert_allclose(table[:, COLUMN["length"]], chord, rtol=1e-15)
     assert spline.stats.min_radius is None
     assert math.isclose(spline.stats.spline_length, float(chord.sum()), rel_tol=1e-12)
+
+
+@pytest.mark.parametrize("strategy", sorted(STRATEGIES))
+def test_the_tables_hold_exactly_the_rows_the_spirals_own(strategy: str) -> None:
+    # Enough arcs for several tables, with refusals among them (a bad tolerance, one below
+    # the floor) that must leave no rows behind.
+    spirals = SPIRALS * 25
+    tolerances = np.array([1e-7 * s.chord for s in spirals])
+    tolerances[7], tolerances[11] = math.nan, 1e-12 * spirals[11].chord
+    tables, where, _, status, _ = STRATEGIES[strategy](
+        frame_table([s.frame for s in spirals]), tolerances, 1000, 1e-10
+    )
+    assert len(tables) > 1
+    assert status[7] != 0
+    assert status[11] != 0
+    owned = np.zeros(len(tables), dtype=np.int64)
+    for i in np.flatnonzero(status == 0):
+        block, begin, end = where[i]
+        assert begin == owned[block]  # rows follow one another, no gaps
+        owned[block] = end
+    assert [len(t) for t in tables] == owned.tolist()
+    assert all(np.isfinite(t[:, COLUMN["length"]]).all() for t in tables)

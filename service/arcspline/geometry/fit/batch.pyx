@@ -335,7 +335,7 @@ cdef object run(
     cdef double[:, ::1] stats = stats_array
     cdef int[::1] status = status_array
     cdef double[:, ::1] aux = aux_array
-    blocks = []
+    blocks, filled = [], []
     cdef Block block = Block(min(ROWS_PER_SPIRAL * n, MAX_BLOCK_ROWS))
     blocks.append(block)
     cdef Py_ssize_t used = 0, capacity = block.shape[0]
@@ -366,6 +366,7 @@ cdef object run(
             capacity = max(<Py_ssize_t>arcs.size(), min(2 * capacity, MAX_BLOCK_ROWS))
             block = Block(capacity)
             blocks.append(block)
+            filled.append(used)
             used = 0
         if outcome == OK:
             with nogil:
@@ -378,7 +379,10 @@ cdef object run(
             where[i, 2] = used
         else:
             status[i] = outcome
-    return [np.asarray(b) for b in blocks], where_array, stats_array, status_array, aux_array
+    filled.append(used)
+    # Only the rows written: the rest of a block is uninitialised memory.
+    tables = [np.asarray(b)[:rows] for b, rows in zip(blocks, filled)]
+    return tables, where_array, stats_array, status_array, aux_array
 
 
 def frame_table(list frames):
