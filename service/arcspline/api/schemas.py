@@ -6,7 +6,7 @@ unknown strategy are refused before any work is queued; what only the geometry c
 (an unreachable tolerance, a spiral too large for double precision) the core reports.
 
 Responses are never built from these models at run time (the worker serialises them
-directly, see ``arcspline.worker.pool.encode``); the models document them, and the tests check
+directly, see ``arcspline.worker.jobs.encode``); the models document them, and the tests check
 real responses against them.
 """
 

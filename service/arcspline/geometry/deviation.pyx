@@ -27,6 +27,7 @@ closed form) to ``h`` yields every root; the maximum of ``e`` over the ends and 
 is the deviation. No sample is involved.
 """
 
+from libc.float cimport DBL_EPSILON as EPS
 from libc.math cimport INFINITY, NAN, cos, fabs, isfinite, sin, sqrt
 
 from arcspline.geometry.curves.canonical cimport Canonical, point
@@ -35,12 +36,10 @@ from arcspline.geometry.maths.vec cimport Vec, vec
 
 cdef extern from *:
     """
-    #define ARCSPLINE_EPS 2.220446049250313e-16
     /* An arc's centre is stored with an error of about eps·radius; this many ulps of the
        radius must fit in the tolerance (an error of at most 1e-4 of it). */
     #define ARCSPLINE_CENTRE_ULPS 1e4
     """
-    const double EPS "ARCSPLINE_EPS"
     const double CENTRE_ULPS "ARCSPLINE_CENTRE_ULPS"
 
 # Newton steps before the first convergence test, from a joint's start or a secant.

@@ -1,13 +1,13 @@
 """The process pool: how work reaches the worker processes, is bounded, timed, healed, drained.
 
 :class:`WorkerPool` runs picklable functions (those of ``arcspline.worker.jobs``) in worker
-processes from the event loop. Each worker is a process with a socket to the server; the event loop
-writes a task to an idle worker's socket, and the socket's protocol (:class:`_Worker`) sets
-the task's answer the moment its last byte arrives, in the loop's I/O callback — no reader
-task has to be woken first — and tells the pool when the socket's end-of-file says the
-worker has died. No threads are involved
-(``ProcessPoolExecutor`` takes two per pool and, with them, the GIL on every task), and a
-worker can be killed and replaced alone:
+processes from the event loop. Each worker is a process with a socket to the server; the
+event loop writes a task to an idle worker's socket, and the socket's protocol
+(:class:`_Worker`) sets the task's answer the moment its last byte arrives, in the loop's
+I/O callback — no reader task has to be woken first — and tells the pool when the socket's
+end-of-file says the worker has died. No threads are involved (``ProcessPoolExecutor`` takes
+two per pool and, with them, the GIL on every task), and a worker can be killed and replaced
+alone:
 
 - admission is bounded by ``capacity`` units in flight (running or waiting), not by the pool
   size; beyond it :class:`QueueFullError` (the API answers 503 + Retry-After);
@@ -23,8 +23,8 @@ worker can be killed and replaced alone:
 together, as one task: under load one compiled loop of the core serves many requests (and
 one round trip to a worker), while an idle service still starts each job at once.
 
-Dependency direction: the API imports this module; this module and ``arcspline.worker.jobs`` import
-only the geometry core and the G-code writer, never the web stack.
+Dependency direction: the API imports this module; this module and
+``arcspline.worker.jobs`` import only the geometry core and the outputs, never the web stack.
 """
 
 from __future__ import annotations

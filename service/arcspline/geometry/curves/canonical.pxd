@@ -14,7 +14,7 @@ Differences of points are formed in factored form (``Q(v) − Q(u) = (v − u)·
 from libc.math cimport atan2, ceil, cos, log2, sin, sqrt
 
 from arcspline.geometry.maths.quadrature cimport HALF_NODES, NODES, WEIGHTS
-from arcspline.geometry.maths.vec cimport Vec, vec
+from arcspline.geometry.maths.vec cimport Vec, norm, vec
 
 
 cdef struct Canonical:
@@ -51,26 +51,22 @@ cdef inline Vec direction(Canonical q, double w) noexcept nogil:
 
 cdef inline Vec unit_tangent(Canonical q, double u) noexcept nogil:
     """The unit vector along ``Q'(u)``."""
-    cdef double w = u * u
-    cdef double x = 1.0 + q.k * w, y = q.m * w
-    cdef double n = sqrt(x * x + y * y)
-    return vec(x / n, y / n)
+    cdef Vec d = direction(q, u * u)
+    cdef double n = norm(d)
+    return vec(d.x / n, d.y / n)
 
 
 cdef inline double tangent(Canonical q, double u, Vec* unit) noexcept nogil:
     """The direction of ``Q'(u)``: its polar angle, and its unit vector into ``unit``."""
-    cdef double w = u * u
-    cdef double x = 1.0 + q.k * w, y = q.m * w
-    cdef double n = sqrt(x * x + y * y)
-    unit[0] = vec(x / n, y / n)
-    return atan2(y, x)
+    cdef Vec d = direction(q, u * u)
+    cdef double n = norm(d)
+    unit[0] = vec(d.x / n, d.y / n)
+    return atan2(d.y, d.x)
 
 
 cdef inline double speed(Canonical q, double u) noexcept nogil:
     """``‖Q'(u)‖``."""
-    cdef double w = u * u
-    cdef double x = 1.0 + q.k * w, y = q.m * w
-    return 3.0 * sqrt(x * x + y * y)
+    return 3.0 * norm(direction(q, u * u))
 
 
 cdef inline double arc_length(Canonical q, double u0, double u1) noexcept nogil:

@@ -13,6 +13,7 @@ two numbers for its message (``UNPLACEABLE``: the worst rounding error and the l
 radius). A spiral's rows depend on that spiral alone, whatever else is in the batch.
 """
 
+from libc.float cimport DBL_EPSILON as EPS
 from libc.math cimport INFINITY, NAN, atan2, fabs, fabsl, hypot, isfinite, sqrt, sqrtl
 from libc.stdlib cimport free, malloc
 from libcpp.vector cimport vector
@@ -36,7 +37,6 @@ from arcspline.geometry.maths.vec cimport Vec, vec
 
 cdef extern from *:
     """
-    #define ARCSPLINE_EPS 2.220446049250313e-16
     /* World coordinates are B0 + a·R·p: each carries a rounding error of a few ulps of the
        largest coordinate. The kernels aim below the tolerance by this many ulps of the
        spiral's coordinate scale (plus chord), so the guarantee holds for the numbers handed
@@ -49,7 +49,6 @@ cdef extern from *:
        information and a controller may read it as a full circle. It becomes its chord. */
     #define ARCSPLINE_FLAT_SWEEP_RAD 1e-10
     """
-    const double EPS "ARCSPLINE_EPS"
     const double ROUNDING_MARGIN_ULPS "ARCSPLINE_ROUNDING_MARGIN_ULPS"
     const double PLACEMENT_SCREEN_ULPS "ARCSPLINE_PLACEMENT_SCREEN_ULPS"
     const double FLAT_SWEEP_RAD "ARCSPLINE_FLAT_SWEEP_RAD"

@@ -576,7 +576,7 @@ cdef cppclass Walk:
     bint failed
 
 
-cdef void record(Canonical s, Walk* w, const Biarc* b, const Proof* p) noexcept nogil:
+cdef void record(Walk* w, const Biarc* b, const Proof* p) noexcept nogil:
     """Append a proven biarc to the chain; the walk fails past ``max_arcs`` or without
     progress."""
     cdef Joint j
@@ -649,7 +649,7 @@ cdef bint walk(
         while w.hint.span > 0.0 and w.u0 + w.hint.span * NEWTON_REACH < 1.0:
             stepped = newton_step(s, w.u0, tolerance, w.hint, jac, &b, &p)
             if stepped:
-                record(s, w, &b, &p)
+                record(w, &b, &p)
             if not stepped or w.failed:
                 break
         if stepped and not walks_on(s, w, tolerance):
@@ -658,7 +658,7 @@ cdef bint walk(
         for i in range(SCREEN_ROUNDS):
             if search(s, w.u0, tolerance, SCREEN_FACTORS[i] * tolerance, w.hint, first_span,
                       &b, &p):
-                record(s, w, &b, &p)
+                record(w, &b, &p)
                 found = True
                 break
         if not found:

@@ -7,10 +7,12 @@ at ``u_d``, where δ occurs. The recursion runs depth first on an explicit stack
 biarcs come out in parameter order.
 """
 
+from libc.float cimport DBL_EPSILON as EPS
 from libc.math cimport atan2, fabs, sqrt
 from libcpp.vector cimport vector
 
 from arcspline.geometry.curves.canonical cimport Canonical, direction, point
+from arcspline.geometry.deviation cimport Peak
 from arcspline.geometry.fit.arcs cimport OK, STUCK, SEGMENT_LIMIT, Arc, Status
 from arcspline.geometry.fit cimport batch
 from arcspline.geometry.maths.roots cimport polynomial_root
@@ -21,10 +23,8 @@ cdef extern from *:
     /* A piece whose split point lies within this many ulps (of its end) of either end
        cannot be split any further in double precision. */
     #define ARCSPLINE_STUCK_ULPS 4.0
-    #define ARCSPLINE_EPS 2.220446049250313e-16
     """
     const double STUCK_ULPS "ARCSPLINE_STUCK_ULPS"
-    const double EPS "ARCSPLINE_EPS"
 
 # Newton steps before the first convergence test: from the start points used here nearly
 # every root is within the resolution after two steps (Theorem 1's cubic) or one (Theorem
@@ -43,11 +43,6 @@ cdef struct End:
     double n      # its norm
     Vec e         # its unit vector
     Vec q         # Q(u)
-
-
-cdef struct Peak:
-    double value
-    double u
 
 
 cdef inline End end_at(Canonical s, double u) noexcept nogil:
