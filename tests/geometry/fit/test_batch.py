@@ -40,7 +40,12 @@ def test_a_spirals_frame_holds_what_the_kernels_read() -> None:
     assert (frame["cos_phi"], frame["sin_phi"]) == spiral.start_tangent
     assert frame["scale"] == spiral.a
     assert frame["mirror"] == spiral.turn_direction
-    assert frame["turn_angle_rad"] == spiral.turn_angle_rad
+    theta = spiral.turn_angle_rad
+    canonical = (3.0, 0.0, 1.2 * math.cos(theta) ** 2 - 1.0, 0.0, 0.0, 0.0)
+    coefficients = tuple(frame[f] for f in ("x1", "x2", "x3", "y1", "y2"))
+    assert coefficients + (frame["w1"],) == canonical
+    assert frame["y3"] == pytest.approx(1.2 * math.cos(theta) * math.sin(theta), rel=1e-15)
+    assert frame["w2"] == 0.0
     assert (frame["end_x"], frame["end_y"]) == spiral.end_point
     assert (frame["chord"], frame["coordinate_scale"]) == (spiral.chord, spiral.coordinate_scale)
     assert set(COLUMN) == set(FIELDS)

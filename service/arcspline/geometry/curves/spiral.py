@@ -11,7 +11,7 @@ Up to a similarity (translate ``B0`` to the origin, rotate ``T0`` onto +x, mirro
 
     Q(u) = (3u + k·u³, m·u³),   k = 1.2·cos²θ − 1,   m = 1.2·cos θ·sin θ
 
-which is where the core does its arithmetic (``arcspline.geometry.canonical``); this module
+which is the curve piece the kernels fit (``curves/piece.pxd``); this module
 holds the spiral as the user gave it, evaluates it in world coordinates and maps canonical
 results back.
 """
@@ -29,7 +29,7 @@ import numpy as np
 from ..errors import GeometryError
 from ..spline import FloatArray, Point
 from . import bezier
-from .canonical import length as canonical_length
+from .piece import spiral_length
 
 #: Control points are accepted as "of the paper's form" when each condition holds to this
 #: relative accuracy: enough for coordinates printed with ~7 significant digits.
@@ -233,11 +233,13 @@ class Spiral:
     def frame(self) -> tuple[float, ...]:
         """What the kernels need of the spiral, in ``fit.batch.FRAME_FIELDS`` order: the
         similarity from the canonical spiral (``B0``, ``T0``, ``a``, the turning direction),
-        θ, the stored end point ``B3``, the chord and the coordinate scale."""
+        the stored end point ``B3``, the chord, the coordinate scale and the canonical
+        spiral's coefficients ``X = 3u + k·u³``, ``Y = m·u³``."""
         (x0, y0), (tx, ty), (x3, y3) = self.start, self.start_tangent, self.end_point
+        c, s = math.cos(self.turn_angle_rad), math.sin(self.turn_angle_rad)
         return (
-            x0, y0, tx, ty, self.a, float(self.turn_direction), self.turn_angle_rad,
-            x3, y3, self.chord, self.coordinate_scale,
+            x0, y0, tx, ty, self.a, float(self.turn_direction), x3, y3, self.chord,
+            self.coordinate_scale, 3.0, 0.0, 1.2 * c * c - 1.0, 0.0, 0.0, 1.2 * c * s, 0.0, 0.0,
         )  # fmt: skip
 
     # -- evaluation (Bernstein form) ---------------------------------------------------
@@ -262,9 +264,9 @@ class Spiral:
         return result
 
     def arclen(self, u0: float = 0.0, u1: float = 1.0) -> float:
-        """Arc length over ``[u0, u1]``: the canonical spiral's (Gauss–Legendre on panels
-        graded towards ``u1``, docs/method.md §6) times the scale ``a``."""
-        return self.a * canonical_length(self.turn_angle_rad, u0, u1)
+        """Arc length over ``[u0, u1]``: the canonical spiral's (adaptive Gauss–Legendre,
+        docs/method.md §6) times the scale ``a``."""
+        return self.a * spiral_length(self.turn_angle_rad, u0, u1)
 
     def line_deviations(
         self, u0: FloatArray, u1: FloatArray, start: FloatArray, end: FloatArray

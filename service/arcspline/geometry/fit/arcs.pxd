@@ -8,7 +8,7 @@ to world coordinates and measures it. Strategies are registered in ``fit/__init_
 
 from libcpp.vector cimport vector
 
-from arcspline.geometry.curves.canonical cimport Canonical
+from arcspline.geometry.curves.piece cimport Piece
 
 
 cdef struct Arc:
@@ -42,5 +42,5 @@ cdef enum Status:
 
 
 ctypedef Status (*FitFn)(
-    Canonical spiral, double tolerance, int max_arcs, vector[Arc]* arcs
+    const Piece* piece, double tolerance, int max_arcs, vector[Arc]* arcs
 ) noexcept nogil

@@ -1,11 +1,12 @@
 # cython: language_level=3, boundscheck=False, wraparound=False, cdivision=True
-"""The loop every strategy shares: check each tolerance, fit the canonical spiral, map its
-arcs to world coordinates, measure what rounding did, and gather the statistics
+"""The loop every strategy shares: check each tolerance, fit the curve piece in its local
+frame, map its arcs to world coordinates, measure what rounding did, and gather the statistics
 (docs/method.md §8 "Assembly").
 
-Input, one row per spiral: the frame table (``FRAME_FIELDS``: the similarity that maps the
-canonical spiral onto the spiral, its stored end point and what the tolerance floor needs) and
-the tolerances. Output of :func:`run`: ``(blocks, where, stats, status, aux)`` — the segments of
+Input, one row per piece (a spiral, or a piece of a path's segment): the frame table
+(``FRAME_FIELDS``: the similarity that maps the local frame onto the world, the piece's stored
+end point, what the tolerance floor needs, and the piece's coefficients in its local frame,
+``curves/piece.pxd``) and the tolerances. Output of :func:`run`: ``(blocks, where, stats, status, aux)`` — the segments of
 every spiral, one row each (``FIELDS``), in a few tables (``blocks``), spiral ``i`` owning rows
 ``where[i, 1]:where[i, 2]`` of ``blocks[where[i, 0]]``;
 per spiral its statistics (``STATS_FIELDS``), its ``Status`` (``STATUS``) and, for a failure,
@@ -20,7 +21,8 @@ from libcpp.vector cimport vector
 
 import numpy as np
 
-from arcspline.geometry.curves.canonical cimport Canonical, arc_length, canonical, point
+from arcspline.geometry.curves.piece cimport Piece, arc_length
+from arcspline.geometry.deviation cimport line_deviation
 from arcspline.geometry.fit.arcs cimport (
     BAD_TOLERANCE,
     OK,
@@ -54,11 +56,12 @@ cdef extern from *:
     const double FLAT_SWEEP_RAD "ARCSPLINE_FLAT_SWEEP_RAD"
 
 FRAME_FIELDS = (
-    "x0", "y0", "cos_phi", "sin_phi", "scale", "mirror", "turn_angle_rad",
-    "end_x", "end_y", "chord", "coordinate_scale",
+    "x0", "y0", "cos_phi", "sin_phi", "scale", "mirror", "end_x", "end_y", "chord",
+    "coordinate_scale", "x1", "x2", "x3", "y1", "y2", "y3", "w1", "w2",
 )
 cdef enum:  # FrameField
-    X0, Y0, COS_PHI, SIN_PHI, SCALE, MIRROR, THETA, END_X, END_Y, CHORD, COORDINATE_SCALE
+    X0, Y0, COS_PHI, SIN_PHI, SCALE, MIRROR, END_X, END_Y, CHORD, COORDINATE_SCALE
+    PX1, PX2, PX3, PY1, PY2, PY3, PW1, PW2
     FRAME_WIDTH
 
 FIELDS = (
@@ -91,7 +94,7 @@ STATUS = {
 
 
 cdef struct Frame:
-    # The similarity from the canonical frame: p ↦ origin + scale·R(φ)·(p_x, mirror·p_y).
+    # The similarity from the local frame: p ↦ origin + scale·R(φ)·(p_x, mirror·p_y).
     Vec origin
     double cos_phi
     double sin_phi
@@ -111,7 +114,7 @@ cdef inline Vec world_point(const Frame* f, double x, double y) noexcept nogil:
 
 
 cdef inline double world_angle(const Frame* f, double x, double y) noexcept nogil:
-    """World polar angle, in (−π, π], of the canonical direction ``(x, y)``."""
+    """World polar angle, in (−π, π], of the local direction ``(x, y)``."""
     y = f.mirror * y
     return atan2(f.sin_phi * x + f.cos_phi * y, f.cos_phi * x - f.sin_phi * y)
 
@@ -131,29 +134,6 @@ def tolerance_floor(double chord, double coordinate_scale, double min_relative_t
     larger of ``min_relative_tolerance × chord`` and four rounding margins, so that at least
     three quarters of the tolerance is left for the approximation itself."""
     return floor_of(chord, coordinate_scale, min_relative_tolerance)
-
-
-cdef inline double line_deviation(Canonical s, const Arc* arc) noexcept nogil:
-    """Largest distance from the spiral piece of ``arc`` to the line through its ends.
-
-    ``(Q(u) − P0)×ĉ`` has its one interior extremum where ``Q'(u)×ĉ = 0``, that is
-    ``u² = ĉ_y / (m·ĉ_x − k·ĉ_y)``.
-    """
-    cdef double cx = arc.x1 - arc.x0, cy = arc.y1 - arc.y0
-    cdef double length = sqrt(cx * cx + cy * cy)
-    cx, cy = cx / length, cy / length
-    cdef double candidates[3]
-    candidates[0], candidates[1], candidates[2] = arc.u0, arc.u1, arc.u0
-    cdef double critical = sqrt(cy / (s.m * cx - s.k * cy))
-    if arc.u0 < critical < arc.u1:
-        candidates[2] = critical
-    cdef double worst = 0.0
-    cdef Vec q
-    cdef int j
-    for j in range(3):
-        q = point(s, candidates[j])
-        worst = max(worst, fabs((q.x - arc.x0) * cy - (q.y - arc.y0) * cx))
-    return worst
 
 
 cdef inline double placement_error(const double* row) noexcept nogil:
@@ -194,7 +174,7 @@ cdef bint placed(
 
 
 cdef Status assemble(
-    Canonical s, const Frame* f, vector[Arc]* arcs, double tolerance, double* rows,
+    const Piece* p, const Frame* f, vector[Arc]* arcs, double tolerance, double* rows,
     double* stats, double* aux
 ) noexcept nogil:
     """Write one row per arc to ``rows`` (world coordinates, ``FIELDS``) and fill ``stats``.
@@ -248,7 +228,10 @@ cdef Status assemble(
             row[F_CENTER_X], row[F_CENTER_Y] = 0.5 * (start.x + end.x), 0.5 * (start.y + end.y)
             row[F_RADIUS], row[F_START_ANGLE], row[F_SWEEP] = INFINITY, 0.0, 0.0
             row[F_LENGTH] = hypot(end.x - start.x, end.y - start.y)
-            dev = f.scale * max(line_deviation(s, arc), arc.dev)
+            dev = f.scale * max(
+                line_deviation(p, vec(arc.x0, arc.y0), vec(arc.x1, arc.y1), arc.u0, arc.u1),
+                arc.dev,
+            )
         row[F_MAX_DEV] = dev
         if dev > max_dev:
             max_dev, u_at_max = dev, arc.u_dev
@@ -266,7 +249,7 @@ cdef Status assemble(
     stats[S_ARCS], stats[S_LINES] = arc_count, <double>n - arc_count
     stats[S_MAX_DEV], stats[S_U_AT_MAX] = max_dev, u_at_max
     stats[S_MEAN_DEV] = total_dev / <double>n
-    stats[S_SPIRAL_LENGTH] = f.scale * arc_length(s, 0.0, 1.0)
+    stats[S_SPIRAL_LENGTH] = f.scale * arc_length(p, 0.0, 1.0)
     stats[S_SPLINE_LENGTH] = total_length
     stats[S_MIN_RADIUS] = min_radius if arc_count > 0.0 else NAN
     stats[S_MAX_RADIUS] = max_radius if arc_count > 0.0 else NAN
@@ -340,7 +323,7 @@ cdef object run(
     cdef Py_ssize_t used = 0, capacity = block.shape[0]
     cdef vector[Arc] arcs
     cdef Frame f
-    cdef Canonical s
+    cdef Piece s
     cdef double t, chord, coordinates, margin
     cdef Status outcome
     for i in range(n):
@@ -356,11 +339,14 @@ cdef object run(
         f.cos_phi, f.sin_phi = frame[i, COS_PHI], frame[i, SIN_PHI]
         f.scale, f.mirror = frame[i, SCALE], frame[i, MIRROR]
         f.end = vec(frame[i, END_X], frame[i, END_Y])
-        s = canonical(frame[i, THETA])
+        s.x[0], s.x[1], s.x[2], s.x[3] = 0.0, frame[i, PX1], frame[i, PX2], frame[i, PX3]
+        s.y[0], s.y[1], s.y[2], s.y[3] = 0.0, frame[i, PY1], frame[i, PY2], frame[i, PY3]
+        s.w[0], s.w[1], s.w[2] = 1.0, frame[i, PW1], frame[i, PW2]
+        s.rational = s.w[1] != 0.0 or s.w[2] != 0.0
         margin = rounding_margin(chord, coordinates)
         arcs.clear()
         with nogil:
-            outcome = fit(s, (t - margin) / f.scale, max_segments, &arcs)
+            outcome = fit(&s, (t - margin) / f.scale, max_segments, &arcs)
         if outcome == OK and used + <Py_ssize_t>arcs.size() > capacity:
             capacity = max(<Py_ssize_t>arcs.size(), min(2 * capacity, MAX_BLOCK_ROWS))
             block = Block(capacity)
@@ -370,7 +356,7 @@ cdef object run(
         if outcome == OK:
             with nogil:
                 outcome = assemble(
-                    s, &f, &arcs, t, block.data + used * WIDTH, &stats[i, 0], &aux[i, 0]
+                    &s, &f, &arcs, t, block.data + used * WIDTH, &stats[i, 0], &aux[i, 0]
                 )
         if outcome == OK:
             where[i, 0], where[i, 1] = len(blocks) - 1, used

@@ -26,7 +26,7 @@ has more segments.
 from libc.math cimport INFINITY, NAN, ceil, cos, exp, isfinite, log, log2, sin
 from libcpp.vector cimport vector
 
-from arcspline.geometry.curves.canonical cimport Canonical, offset, point, tangent
+from arcspline.geometry.curves.piece cimport Piece, offset, point, tangent
 from arcspline.geometry.deviation cimport Peak, arc_deviation, joint_split, sampled, split_guess
 from arcspline.geometry.fit cimport batch
 from arcspline.geometry.fit.arcs cimport OK, Arc, Status
@@ -158,14 +158,14 @@ cdef struct Top:
     int at
 
 
-cdef inline Chord spiral_chord(Canonical s, double u0, double u1) noexcept nogil:
+cdef inline Chord spiral_chord(const Piece* s, double u0, double u1) noexcept nogil:
     cdef Vec t0, t1
     cdef double phi0 = tangent(s, u0, &t0), phi1 = tangent(s, u1, &t1)
     return chord(point(s, u0), phi0, t0, offset(s, u0, u1), phi1, t1)
 
 
 cdef inline Biarc biarc(
-    Canonical s, const Chord* c, double u0, double u1, double lam, bint exact
+    const Piece* s, const Chord* c, double u0, double u1, double lam, bint exact
 ) noexcept nogil:
     """The member ``λ`` of the family from ``Q(u0)`` to ``Q(u1)`` (``c``, their chord);
     ``exact=False`` (screening) guesses the joint's split parameter."""
@@ -183,7 +183,7 @@ cdef inline Biarc biarc(
     return b
 
 
-cdef inline double screen(Canonical s, const Biarc* b, int samples, double bound) noexcept nogil:
+cdef inline double screen(const Piece* s, const Biarc* b, int samples, double bound) noexcept nogil:
     """Largest sampled radial distance of both arcs (a lower bound on the deviation);
     ``inf`` for an invalid biarc or a number that is not one. A biarc known to score at
     least ``bound`` is left as soon as it is known (the value is then at least ``bound``)."""
@@ -195,7 +195,7 @@ cdef inline double screen(Canonical s, const Biarc* b, int samples, double bound
     return max(worst, sampled(s, b.g, b.t, b.kappa1, b.split, b.u1, samples))
 
 
-cdef inline Proof prove(Canonical s, const Biarc* b, double tolerance, bint lazily) noexcept nogil:
+cdef inline Proof prove(const Piece* s, const Biarc* b, double tolerance, bint lazily) noexcept nogil:
     """Both arcs' exact deviations (``inf`` for an invalid biarc); ``lazily``, the second arc
     is not measured (NaN) when the first is out of the tolerance."""
     cdef Proof p
@@ -228,7 +228,7 @@ cdef inline double linspace(double a, double b, int n, int i) noexcept nogil:
 
 
 cdef Top longest_fit(
-    Canonical s, double u0, Round* r, int samples, double target, bint exact_minima
+    const Piece* s, double u0, Round* r, int samples, double target, bint exact_minima
 ) noexcept nogil:
     """The round's longest ``u1`` with a fitting ``λ`` (screened deviation ≤ ``target``; the
     first of equal ``u1``) and the ``λ`` of least deviation there; ``ok`` false if none fits.
@@ -289,7 +289,7 @@ cdef double crossing(const Round* r, Top t, double target) noexcept nogil:
 
 
 cdef bint prove_rungs(
-    Canonical s, double u0, double tolerance, const double* rungs, int count, double lam,
+    const Piece* s, double u0, double tolerance, const double* rungs, int count, double lam,
     Biarc* out, Proof* proof
 ) noexcept nogil:
     """The first of the piece ends ``rungs`` whose biarc of join parameter ``lam`` is proven
@@ -365,7 +365,7 @@ cdef struct Search:
     bint has
 
 
-cdef inline void take(Canonical s, double u0, Search* state, Round* r, double target,
+cdef inline void take(const Piece* s, double u0, Search* state, Round* r, double target,
                       double width, vector[double]* tried) noexcept nogil:
     cdef Top t = longest_fit(s, u0, r, COARSE_SAMPLES, target, False)
     if t.ok and (not state.has or t.u > state.u_top):
@@ -375,7 +375,7 @@ cdef inline void take(Canonical s, double u0, Search* state, Round* r, double ta
         tried.push_back(r.grid[i])
 
 
-cdef inline bint reach_end(Canonical s, double u0, Search* state, Round* r,
+cdef inline bint reach_end(const Piece* s, double u0, Search* state, Round* r,
                            double target) noexcept nogil:
     cdef Top t = longest_fit(s, u0, r, COARSE_SAMPLES, target, False)
     if t.ok:
@@ -384,7 +384,7 @@ cdef inline bint reach_end(Canonical s, double u0, Search* state, Round* r,
 
 
 cdef bint search(
-    Canonical s, double u0, double tolerance, double target, Hint hint, double floor,
+    const Piece* s, double u0, double tolerance, double target, Hint hint, double floor,
     Biarc* out, Proof* proof
 ) noexcept nogil:
     """From ``u0``, the proven biarc reaching the largest ``u1`` found with screening aimed at
@@ -485,7 +485,7 @@ cdef bint search(
 
 
 cdef inline bint equations(
-    Canonical s, double u0, double tolerance, double log_span, double lam, Biarc* b,
+    const Piece* s, double u0, double tolerance, double log_span, double lam, Biarc* b,
     Proof* p, double* f0, double* f1
 ) noexcept nogil:
     """The biarc at ``(log(u1 − u0), λ)``, its exact deviations and the residuals
@@ -500,7 +500,7 @@ cdef inline bint equations(
 
 
 cdef bint newton_step(
-    Canonical s, double u0, double tolerance, Hint hint, double* jac, Biarc* out,
+    const Piece* s, double u0, double tolerance, Hint hint, double* jac, Biarc* out,
     Proof* proof
 ) noexcept nogil:
     """From ``u0``, the biarc whose two arcs both deviate by ``NEWTON_TARGET·tol``, by
@@ -557,7 +557,7 @@ cdef struct Joint:
     double s
 
 
-cdef struct Piece:
+cdef struct Link:
     # An arc of the chain: its curvature, exact deviation and where it is reached.
     double kappa
     double dev
@@ -567,7 +567,7 @@ cdef struct Piece:
 cdef cppclass Walk:
     # The walk's chain and state (docs/fewest-arcs.md §2).
     vector[Joint] joints
-    vector[Piece] pieces
+    vector[Link] pieces
     double u0
     Hint hint
     int max_arcs
@@ -580,7 +580,7 @@ cdef void record(Walk* w, const Biarc* b, const Proof* p) noexcept nogil:
     """Append a proven biarc to the chain; the walk fails past ``max_arcs`` or without
     progress."""
     cdef Joint j
-    cdef Piece piece
+    cdef Link piece
     j.x, j.y, j.phi, j.s = b.g.x, b.g.y, b.psi, b.split
     w.joints.push_back(j)
     j.x, j.y, j.phi, j.s = b.b.x, b.b.y, b.phi1, b.u1
@@ -595,7 +595,7 @@ cdef void record(Walk* w, const Biarc* b, const Proof* p) noexcept nogil:
         w.failed = True
 
 
-cdef void close(Canonical s, Walk* w, int keep, double tolerance) noexcept nogil:
+cdef void close(const Piece* s, Walk* w, int keep, double tolerance) noexcept nogil:
     """Replace the chain from its first ``keep`` arcs on by a proven triarc from that joint
     to the spiral's end, if one is found."""
     w.last_tried = keep
@@ -605,7 +605,7 @@ cdef void close(Canonical s, Walk* w, int keep, double tolerance) noexcept nogil
     w.joints.resize(keep)
     w.pieces.resize(keep)
     cdef Joint j
-    cdef Piece piece
+    cdef Link piece
     cdef int i
     for i in range(4):
         j.x, j.y, j.phi, j.s = t.x[i], t.y[i], t.phi[i], t.s[i]
@@ -616,7 +616,7 @@ cdef void close(Canonical s, Walk* w, int keep, double tolerance) noexcept nogil
     w.u0, w.closed, w.failed = 1.0, True, False
 
 
-cdef bint walks_on(Canonical s, Walk* w, double tolerance) noexcept nogil:
+cdef bint walks_on(const Piece* s, Walk* w, double tolerance) noexcept nogil:
     """After a step: where it ends within ``CLOSE_REACH`` of its span from the end, the
     tail merge is tried from its start. Whether the walk goes on."""
     if w.failed or w.u0 >= 1.0:
@@ -627,7 +627,7 @@ cdef bint walks_on(Canonical s, Walk* w, double tolerance) noexcept nogil:
 
 
 cdef bint walk(
-    Canonical s, double tolerance, int max_arcs, double first_span, Walk* w
+    const Piece* s, double tolerance, int max_arcs, double first_span, Walk* w
 ) noexcept nogil:
     """Greedy longest proven biarcs over ``[0, 1]`` into ``w``, then the tail merge; False
     where the walk fails or would need more than ``max_arcs`` arcs."""
@@ -674,7 +674,7 @@ cdef bint walk(
 
 
 cdef Status fewest(
-    Canonical s, double tolerance, int max_arcs, vector[Arc]* arcs
+    const Piece* s, double tolerance, int max_arcs, vector[Arc]* arcs
 ) noexcept nogil:
     """``subdivide``, then the walk: its chain replaces ``subdivide``'s arcs when it has no
     more of them. (Two segments are the least possible: one arc matching both end tangents

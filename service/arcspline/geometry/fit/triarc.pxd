@@ -1,5 +1,5 @@
 # cython: language_level=3
-from arcspline.geometry.curves.canonical cimport Canonical
+from arcspline.geometry.curves.piece cimport Piece
 
 
 cdef struct Triarc:
@@ -14,4 +14,4 @@ cdef struct Triarc:
     double u_dev[3]
 
 
-cdef bint best_triarc(Canonical s, double ua, double tolerance, Triarc* out) noexcept nogil
+cdef bint best_triarc(const Piece* s, double ua, double tolerance, Triarc* out) noexcept nogil

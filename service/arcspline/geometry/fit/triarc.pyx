@@ -17,7 +17,7 @@ the winner is kept only if ``arc_deviation`` proves all three arcs within the to
 
 from libc.math cimport INFINITY, atan2
 
-from arcspline.geometry.curves.canonical cimport Canonical, offset, point, tangent, unit_tangent
+from arcspline.geometry.curves.piece cimport Piece, offset, point, tangent, unit_tangent
 from arcspline.geometry.deviation cimport Peak, arc_deviation, joint_split, sampled, split_guess
 from arcspline.geometry.fit.sabin cimport Chord, Sabin, chord, sabin_biarc
 from arcspline.geometry.maths.vec cimport Vec, vec
@@ -79,7 +79,7 @@ cdef struct Ends:
     Vec tb
 
 
-cdef inline Ends ends_of(Canonical s, double ua) noexcept nogil:
+cdef inline Ends ends_of(const Piece* s, double ua) noexcept nogil:
     cdef Ends e
     e.ua, e.a, e.b = ua, point(s, ua), point(s, 1.0)
     e.phi_a, e.phi_b = tangent(s, ua, &e.ta), tangent(s, 1.0, &e.tb)
@@ -95,7 +95,7 @@ cdef struct Lead:
     Vec d         # B − J1
 
 
-cdef inline Lead lead(Canonical s, const Ends* e, double v, double delta) noexcept nogil:
+cdef inline Lead lead(const Piece* s, const Ends* e, double v, double delta) noexcept nogil:
     cdef Vec tv = unit_tangent(s, v)
     cdef double nx = -tv.y, ny = tv.x
     cdef Vec o = offset(s, e.ua, v)
@@ -121,7 +121,7 @@ cdef inline Sabin trail(const Ends* e, const Lead* arc0, double lam) noexcept no
 
 
 cdef bint triarc(
-    Canonical s, const Ends* e, double v, double delta, double lam, Triarc* t,
+    const Piece* s, const Ends* e, double v, double delta, double lam, Triarc* t,
     Vec* directions
 ) noexcept nogil:
     """The triarc of the parameters ``(v, δ, λ)`` into ``t`` (with its arcs' unit start
@@ -148,7 +148,7 @@ cdef struct Screen:
     double worst
 
 
-cdef inline Screen screen_lead(Canonical s, const Ends* e, double v, double delta,
+cdef inline Screen screen_lead(const Piece* s, const Ends* e, double v, double delta,
                                int samples) noexcept nogil:
     """Arc 0 of the candidates with first joint ``(v, δ)``: its largest sampled radial
     distance (``inf`` if invalid), the joint's split parameter guessed by Newton steps."""
@@ -163,7 +163,7 @@ cdef inline Screen screen_lead(Canonical s, const Ends* e, double v, double delt
 
 
 cdef double screened(
-    Canonical s, const Ends* e, const Screen* c, double lam, int samples, double bound
+    const Piece* s, const Ends* e, const Screen* c, double lam, int samples, double bound
 ) noexcept nogil:
     """Largest sampled radial distance of the candidate ``(v, δ, λ)`` whose arc 0 is ``c``
     (a lower bound on its deviation); ``inf`` if invalid or not a number. A candidate known
@@ -183,7 +183,7 @@ cdef double screened(
 
 
 cdef bint proven(
-    Canonical s, const Ends* e, const double* centre, double tolerance, Triarc* out
+    const Piece* s, const Ends* e, const double* centre, double tolerance, Triarc* out
 ) noexcept nogil:
     """Whether the candidate ``centre = (v, δ, λ)`` is a triarc whose three arcs are
     proven within the tolerance (their deviations into ``out``)."""
@@ -203,7 +203,7 @@ cdef bint proven(
     return True
 
 
-cdef bint best_triarc(Canonical s, double ua, double tolerance, Triarc* out) noexcept nogil:
+cdef bint best_triarc(const Piece* s, double ua, double tolerance, Triarc* out) noexcept nogil:
     """A triarc over ``[u_a, 1]`` proven within ``tolerance`` into ``out``, if one is found.
 
     The search proves its best candidate whenever a better one screens within

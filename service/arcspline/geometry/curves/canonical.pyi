@@ -1,3 +1,0 @@
-"""Type stubs of the compiled ``canonical.pyx``."""
-
-def length(turn_angle_rad: float, u0: float = 0.0, u1: float = 1.0) -> float: ...

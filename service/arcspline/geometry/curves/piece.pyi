@@ -1,0 +1,3 @@
+"""Type stubs of the compiled ``piece.pyx``."""
+
+def spiral_length(turn_angle_rad: float, u0: float = 0.0, u1: float = 1.0) -> float: ...
