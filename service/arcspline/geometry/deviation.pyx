@@ -14,8 +14,8 @@ arc's ends (not on the opposite side of ``C``), the piece and the arc are polar 
 ``ρ(ψ)`` over the same angles, so their Hausdorff distance is ``max |‖Q(u) − C‖ − r|``.
 Both conditions are checked exactly: the angle is monotone iff ``w(u) = κ·(Q − J)×Q' + T·Q'
 > 0`` on the piece — with ``Q = (X, Y)/W``, ``W³·w = κ·(X − J·W)×D + W·(T·D)``, ``D = X'W −
-XW'``, a polynomial whose minimum is at an end or a root of its derivative (found by the
-cascade, ``maths/poly.pxd``); the sides are signs of ``(κ(Q(s) − J) − N)·(κ(E − J) − N)``.
+XW'``, a polynomial proven positive by its Bernstein coefficients or, failing that, by its
+minimum (at an end or a root of its derivative, ``maths/poly.pxd``); the sides are signs of ``(κ(Q(s) − J) − N)·(κ(E − J) − N)``.
 An arc failing either is refused (``inf``).
 
 **The maximum, exactly.** ``e(u) = |κ‖P‖² − 2P·N| / (‖κP − N‖ + 1)`` (``P = Q(u) − J``, no
@@ -42,7 +42,7 @@ from arcspline.geometry.maths.poly cimport (
     MAX_POINTS,
     add_product,
     critical_points,
-    minimum_on,
+    positive_on,
 )
 from arcspline.geometry.maths.roots cimport polynomial_root
 from arcspline.geometry.maths.vec cimport Vec, vec
@@ -111,7 +111,7 @@ cdef inline bint is_graph(
         if p.rational:
             w[i + 1] += p.w[1] * (tx * dx[i] + ty * dy[i])
             w[i + 2] += p.w[2] * (tx * dx[i] + ty * dy[i])
-    if not (hi > lo and minimum_on(w, MAX_COEFFS - 1, lo, hi) > 0.0):
+    if not (hi > lo and positive_on(w, MAX_COEFFS - 1, lo, hi)):
         return False
     cdef double ex = kappa * (e.x - j.x) - nx, ey = kappa * (e.y - j.y) - ny
     cdef Vec q = point(p, lo)

@@ -5,12 +5,21 @@ an interval by the derivative cascade (docs/method.md §7).
 Polynomials are ascending coefficient arrays of at most ``MAX_COEFFS`` entries,
 ``c[0] + c[1]·x + … + c[d]·x^d``, with their degree passed beside them.
 
+**Bernstein screen.** On ``[lo, hi]`` the polynomial is first written in the Bernstein basis
+of its degree; the number of sign changes of those coefficients bounds the number of roots
+there and has its parity (Descartes' rule for the Bernstein basis). None: no root, and all
+positive: positive throughout. One: exactly one root, bracketed by the ends. Only otherwise
+does the cascade run. This is the common case's shortcut, not an approximation.
+
 **The cascade.** Between consecutive roots of ``p'`` the polynomial ``p`` is monotone, so a
 sign change of ``p`` over such an interval brackets its one root there and no sign change
 means none. Starting from ``p⁽ᵈ⁻¹⁾`` (linear, its root in closed form) and going down one
 derivative at a time yields every root of ``p`` in ``[lo, hi]`` — isolated, then polished by
 :func:`polynomial_root` — with no sampling and no guess of how many there are.
 """
+
+from libc.float cimport DBL_EPSILON
+from libc.math cimport fabs
 
 from arcspline.geometry.maths.roots cimport horner, polynomial_root
 
@@ -21,6 +30,17 @@ cdef enum:
     MAX_POINTS = 64
     # Newton steps before the first convergence test, from a secant start.
     CASCADE_ITERATIONS = 3
+
+
+cdef extern from *:
+    """
+    /* Binomial coefficients C(n, k), n < 8. */
+    static const double ARCSPLINE_BINOMIAL[8][8] = {
+        {1, 0, 0, 0, 0, 0, 0, 0}, {1, 1, 0, 0, 0, 0, 0, 0}, {1, 2, 1, 0, 0, 0, 0, 0},
+        {1, 3, 3, 1, 0, 0, 0, 0}, {1, 4, 6, 4, 1, 0, 0, 0}, {1, 5, 10, 10, 5, 1, 0, 0},
+        {1, 6, 15, 20, 15, 6, 1, 0}, {1, 7, 21, 35, 35, 21, 7, 1}};
+    """
+    const double BINOMIAL "ARCSPLINE_BINOMIAL"[8][8]
 
 
 cdef inline int degree_of(const double* c, int degree) noexcept nogil:
@@ -80,6 +100,61 @@ cdef inline int merge(double* points, int n, const double* roots, int count) noe
     return m
 
 
+cdef inline void bernstein(
+    const double* c, int degree, double lo, double hi, double* out
+) noexcept nogil:
+    """The Bernstein coefficients of ``c`` on ``[lo, hi]`` (``degree + 1`` of them): a Taylor
+    shift to ``lo``, a scaling by ``hi − lo``, then ``b_i = Σ_{k≤i} C(i,k)/C(n,k)·a_k``."""
+    cdef double a[MAX_COEFFS]
+    cdef int i, j, k
+    for i in range(degree + 1):
+        a[i] = c[i]
+    for i in range(degree):
+        for j in range(degree - 1, i - 1, -1):
+            a[j] += lo * a[j + 1]
+    cdef double h = hi - lo, power = h
+    for k in range(1, degree + 1):
+        a[k] *= power
+        power *= h
+    for i in range(degree + 1):
+        out[i] = 0.0
+        for k in range(i + 1):
+            out[i] += BINOMIAL[i][k] / BINOMIAL[degree][k] * a[k]
+
+
+cdef inline int sign_changes(const double* b, int count) noexcept nogil:
+    """Sign changes along ``b``, zeros skipped."""
+    cdef int changes = 0, i
+    cdef double last = 0.0
+    for i in range(count):
+        if b[i] != 0.0:
+            if last != 0.0 and (b[i] > 0.0) != (last > 0.0):
+                changes += 1
+            last = b[i]
+    return changes
+
+
+cdef inline int deflate_end(double* c, int degree, double x) noexcept nogil:
+    """Divide ``c`` by ``(u − x)`` where ``c(x)`` is zero to rounding (its Horner error bound),
+    as where an arc touches the curve at an end of its piece: the root at the end is known,
+    and its rounding noise would hide the sign of ``c`` beside it. The new degree."""
+    cdef double value = c[degree], bound = fabs(c[degree]), ax = fabs(x)
+    cdef int j
+    for j in range(degree - 1, -1, -1):
+        value = value * x + c[j]
+        bound = bound * ax + fabs(c[j])
+    if degree < 1 or fabs(value) > 16.0 * degree * DBL_EPSILON * bound:
+        return degree
+    # Synthetic division; the remainder (the noise) is dropped.
+    cdef double carry = c[degree], next_carry
+    for j in range(degree - 1, -1, -1):
+        next_carry = c[j] + carry * x
+        c[j] = carry
+        carry = next_carry
+    c[degree] = 0.0
+    return degree - 1
+
+
 cdef inline int critical_points(
     const double* c, int degree, double lo, double hi, double* points
 ) noexcept nogil:
@@ -88,14 +163,33 @@ cdef inline int critical_points(
     among them, and ``c`` is monotone between consecutive points."""
     cdef double levels[MAX_COEFFS][MAX_COEFFS]
     cdef double roots[MAX_COEFFS]
-    degree = degree_of(c, degree)
-    points[0], points[1] = lo, hi
-    cdef int n = 2 if hi > lo else 1
-    if degree < 1:
-        return n
-    cdef int d, j, i, found
+    cdef int j
     for j in range(degree + 1):
         levels[0][j] = c[j]
+    degree = degree_of(levels[0], degree)
+    points[0], points[1] = lo, hi
+    cdef int n = 2 if hi > lo else 1
+    if degree < 1 or n == 1:
+        return n
+    degree = deflate_end(levels[0], degree, lo)
+    degree = deflate_end(levels[0], degree, hi)
+    if degree < 1:
+        return n
+    c = levels[0]
+    cdef double bern[MAX_COEFFS]
+    bernstein(c, degree, lo, hi, bern)
+    cdef int changes = sign_changes(bern, degree + 1)
+    if changes == 0:
+        return n
+    if changes == 1 and bern[0] != 0.0 and bern[degree] != 0.0:
+        # Exactly one root, strictly inside.
+        points[2] = points[1]
+        points[1] = polynomial_root(
+            c, degree, lo, hi, lo + (hi - lo) * bern[0] / (bern[0] - bern[degree]),
+            CASCADE_ITERATIONS,
+        )
+        return 3
+    cdef int d, i, found
     for d in range(1, degree):
         derivative(levels[d - 1], degree - d + 1, levels[d])
     cdef const double* p
@@ -120,16 +214,26 @@ cdef inline int critical_points(
     return n
 
 
-cdef inline double minimum_on(const double* c, int degree, double lo, double hi) noexcept nogil:
-    """The smallest value of ``c`` on ``[lo, hi]``: at an end or a root of ``c'``."""
+cdef inline bint positive_on(const double* c, int degree, double lo, double hi) noexcept nogil:
+    """Whether ``c > 0`` on ``[lo, hi]``: all Bernstein coefficients positive proves it;
+    otherwise the smallest value, at an end or a root of ``c'``, decides."""
     cdef double points[MAX_POINTS]
     cdef double slope[MAX_COEFFS]
+    cdef double b[MAX_COEFFS]
     degree = degree_of(c, degree)
-    cdef double low = min(horner(c, max(degree, 0), lo), horner(c, max(degree, 0), hi))
-    if degree < 2:
-        return low
-    derivative(c, degree, slope)
-    cdef int n = critical_points(slope, degree - 1, lo, hi, points), i
-    for i in range(n):
-        low = min(low, horner(c, degree, points[i]))
-    return low
+    if degree < 0:
+        return False
+    bernstein(c, degree, lo, hi, b)
+    cdef int i, n
+    cdef bint all_positive = True
+    for i in range(degree + 1):
+        all_positive = all_positive and b[i] > 0.0
+    if all_positive:
+        return True
+    cdef double low = min(horner(c, degree, lo), horner(c, degree, hi))
+    if degree >= 2:
+        derivative(c, degree, slope)
+        n = critical_points(slope, degree - 1, lo, hi, points)
+        for i in range(n):
+            low = min(low, horner(c, degree, points[i]))
+    return low > 0.0
