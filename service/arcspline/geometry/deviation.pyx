@@ -176,8 +176,14 @@ cdef Peak arc_deviation(
         if p.rational:
             h[i + 1] -= p.w[1] * (nx * dx[i] + ny * dy[i])
             h[i + 2] -= p.w[2] * (nx * dx[i] + ny * dy[i])
+    # Where the arc starts (ends) on the piece's first (last) point it is tangent there (a
+    # G1 chain through a point of the curve), and h has a root at that end.
+    cdef Vec at_lo = point(p, lo), at_hi = point(p, hi)
     cdef double points[MAX_POINTS]
-    cdef int n = critical_points(h, MAX_COEFFS - 1, lo, hi, points)
+    cdef int n = critical_points(
+        h, MAX_COEFFS - 1, lo, hi, points, at_lo.x == j.x and at_lo.y == j.y,
+        at_hi.x == e.x and at_hi.y == e.y,
+    )
     cdef double value
     peak.value = -INFINITY
     for i in range(n):
@@ -204,7 +210,7 @@ cdef double line_deviation(const Piece* p, Vec start, Vec end, double lo, double
     for i in range(MAX_COEFFS):
         c[i] = dx[i] * cy - dy[i] * cx if i < 5 else 0.0
     cdef double points[MAX_POINTS]
-    cdef int n = critical_points(c, 4, lo, hi, points)
+    cdef int n = critical_points(c, 4, lo, hi, points, False, False)
     cdef double worst = 0.0
     cdef Vec q
     for i in range(n):

@@ -8,8 +8,9 @@ Polynomials are ascending coefficient arrays of at most ``MAX_COEFFS`` entries,
 **Bernstein screen.** On ``[lo, hi]`` the polynomial is first written in the Bernstein basis
 of its degree; the number of sign changes of those coefficients bounds the number of roots
 there and has its parity (Descartes' rule for the Bernstein basis). None: no root, and all
-positive: positive throughout. One: exactly one root, bracketed by the ends. Only otherwise
-does the cascade run. This is the common case's shortcut, not an approximation.
+positive: positive throughout. One: exactly one root, bracketed by the ends. The screen is
+trusted only when every coefficient is farther from 0 than its rounding error bound; only
+otherwise does the cascade run. It is the common case's shortcut, not an approximation.
 
 **The cascade.** Between consecutive roots of ``p'`` the polynomial ``p`` is monotone, so a
 sign change of ``p`` over such an interval brackets its one root there and no sign change
@@ -122,15 +123,29 @@ cdef inline void bernstein(
             out[i] += BINOMIAL[i][k] / BINOMIAL[degree][k] * a[k]
 
 
-cdef inline int sign_changes(const double* b, int count) noexcept nogil:
-    """Sign changes along ``b``, zeros skipped."""
+cdef inline double bernstein_error(
+    const double* c, int degree, double lo, double hi
+) noexcept nogil:
+    """A bound on the rounding error of each of :func:`bernstein`'s coefficients:
+    ``4(n + 1)²·eps·Σ|c_k|·max(|lo|, |hi|)^k`` (the shift and the sums each add at most
+    ``n`` roundings of terms no larger than that)."""
+    cdef double x = max(fabs(lo), fabs(hi)), total = 0.0, power = 1.0
+    cdef int k
+    for k in range(degree + 1):
+        total += fabs(c[k]) * power
+        power *= x
+    return 4.0 * (degree + 1) * (degree + 1) * DBL_EPSILON * total
+
+
+cdef inline int sign_changes(const double* b, int count, double error) noexcept nogil:
+    """Sign changes along ``b``; −1 when a coefficient is within ``error`` of 0 and so has
+    no certain sign."""
     cdef int changes = 0, i
-    cdef double last = 0.0
     for i in range(count):
-        if b[i] != 0.0:
-            if last != 0.0 and (b[i] > 0.0) != (last > 0.0):
-                changes += 1
-            last = b[i]
+        if not fabs(b[i]) > error:
+            return -1
+        if i > 0 and (b[i] > 0.0) != (b[i - 1] > 0.0):
+            changes += 1
     return changes
 
 
@@ -156,11 +171,13 @@ cdef inline int deflate_end(double* c, int degree, double x) noexcept nogil:
 
 
 cdef inline int critical_points(
-    const double* c, int degree, double lo, double hi, double* points
+    const double* c, int degree, double lo, double hi, double* points, bint touch_lo,
+    bint touch_hi
 ) noexcept nogil:
-    """``lo``, ``hi`` and every root in ``[lo, hi]`` of ``c`` and of its derivatives, sorted
-    into ``points`` (at most ``MAX_POINTS``); their number. The roots of ``c`` itself are
-    among them, and ``c`` is monotone between consecutive points."""
+    """``lo``, ``hi`` and every root in ``[lo, hi]`` of ``c`` (and, where the cascade runs,
+    of its derivatives), sorted into ``points`` (at most ``MAX_POINTS``); their number.
+    ``touch_lo``/``touch_hi`` say that ``c`` has a root at that end in exact arithmetic (an
+    arc tangent to the curve there): it is divided out first (:func:`deflate_end`)."""
     cdef double levels[MAX_COEFFS][MAX_COEFFS]
     cdef double roots[MAX_COEFFS]
     cdef int j
@@ -171,17 +188,19 @@ cdef inline int critical_points(
     cdef int n = 2 if hi > lo else 1
     if degree < 1 or n == 1:
         return n
-    degree = deflate_end(levels[0], degree, lo)
-    degree = deflate_end(levels[0], degree, hi)
+    if touch_lo:
+        degree = deflate_end(levels[0], degree, lo)
+    if touch_hi:
+        degree = deflate_end(levels[0], degree, hi)
     if degree < 1:
         return n
     c = levels[0]
     cdef double bern[MAX_COEFFS]
     bernstein(c, degree, lo, hi, bern)
-    cdef int changes = sign_changes(bern, degree + 1)
+    cdef int changes = sign_changes(bern, degree + 1, bernstein_error(c, degree, lo, hi))
     if changes == 0:
         return n
-    if changes == 1 and bern[0] != 0.0 and bern[degree] != 0.0:
+    if changes == 1:
         # Exactly one root, strictly inside.
         points[2] = points[1]
         points[1] = polynomial_root(
@@ -224,16 +243,17 @@ cdef inline bint positive_on(const double* c, int degree, double lo, double hi) 
     if degree < 0:
         return False
     bernstein(c, degree, lo, hi, b)
+    cdef double error = bernstein_error(c, degree, lo, hi)
     cdef int i, n
     cdef bint all_positive = True
     for i in range(degree + 1):
-        all_positive = all_positive and b[i] > 0.0
+        all_positive = all_positive and b[i] > error
     if all_positive:
         return True
     cdef double low = min(horner(c, degree, lo), horner(c, degree, hi))
     if degree >= 2:
         derivative(c, degree, slope)
-        n = critical_points(slope, degree - 1, lo, hi, points)
+        n = critical_points(slope, degree - 1, lo, hi, points, False, False)
         for i in range(n):
             low = min(low, horner(c, degree, points[i]))
     return low > 0.0
