@@ -33,7 +33,7 @@ def test_magnifications_are_round_numbers(x: float, nice: float) -> None:
 def test_the_writer_draws_every_segment_of_a_fewest_arcs_spline() -> None:
     spiral = Spiral.from_parameters((1.5, 3.0), (1.0, 0.0), 51.34, -0.41574)
     spline = approximate(spiral, 1e-3, "fewest-arcs")
-    root = ET.fromstring(WRITER.write(spline, spiral))
+    root = ET.fromstring(WRITER.write([(spline, spiral)]))
     arcs = [p for p in root.iter(f"{SVG}path") if " A" in p.get("d", "")]
     assert len(arcs) == len(spline) == 7
     legend = " ".join(t.text or "" for t in root.iter(f"{SVG}text"))

@@ -3,17 +3,17 @@
 A writer is a module with a ``WRITER`` (:class:`Writer`) and one line in :data:`WRITERS`:
 ``gcode`` (an RS-274 program, ``gcode/``) and ``svg`` (a picture of the approximation,
 ``svg.py``). Writers are pure: the curve, its arc spline and the writer's options in, text
-out; what they refuse they raise as their own error (:class:`~.gcode.GcodeError`) or a
+out (a spiral is one part; a path has one part per subpath); what they refuse they raise as their own error (:class:`~.gcode.GcodeError`) or a
 :class:`~arcspline.geometry.GeometryError`.
 """
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import Any, Protocol
 
-from arcspline.geometry import ArcSpline, Curve
-
 from . import gcode, svg
+from .part import Part
 
 
 class Writer(Protocol):
@@ -27,11 +27,11 @@ class Writer(Protocol):
     def media_type(self) -> str:
         """The document's media type."""
 
-    def write(self, spline: ArcSpline, curve: Curve, options: Any) -> str:
-        """The document of ``spline``, an approximation of ``curve``."""
+    def write(self, parts: Sequence[Part], options: Any) -> str:
+        """The document of ``parts`` (arc splines and the curves they approximate)."""
 
 
 #: The writers by name.
 WRITERS: dict[str, Writer] = {writer.name: writer for writer in (gcode.WRITER, svg.WRITER)}
 
-__all__ = ["WRITERS", "Writer"]
+__all__ = ["WRITERS", "Part", "Writer"]

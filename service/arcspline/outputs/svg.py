@@ -11,6 +11,7 @@ picture.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -19,6 +20,8 @@ import numpy.typing as npt
 
 from arcspline.geometry import ArcSpline, Curve, GeometryError
 from arcspline.geometry.spline import FloatArray
+
+from .part import Part
 
 MEDIA_TYPE = "image/svg+xml"
 WIDTH_PX = 900
@@ -93,7 +96,7 @@ class Layout:
     width_px: float
     height_px: float
     magnify: float
-    path: FloatArray  # (k, 2) the curve
+    paths: list[FloatArray]  # (k, 2) each curve
     starts: FloatArray  # (n, 2)
     ends: FloatArray  # (n, 2)
     centres: FloatArray  # (n, 2), meaningful for arcs
@@ -103,16 +106,31 @@ class Layout:
     band_in: FloatArray  # (n, m, 2)
 
 
-def layout(curve: Curve, spline: ArcSpline) -> Layout:
+def _joined(splines: Sequence[ArcSpline]) -> ArcSpline:
+    """The parts' splines as one (for drawing: the segments in order)."""
+    if len(splines) == 1:
+        return splines[0]
+    first = splines[0]
+    table = np.concatenate([s.table for s in splines])
+    worst = max(splines, key=lambda s: s.stats.max_deviation).stats
+    return ArcSpline(table, worst, first.tolerance, first.strategy)
+
+
+def layout(parts: Sequence[Part]) -> Layout:
     """Place the picture; a curve whose numbers overflow on the way cannot be drawn.
 
     Raises :class:`GeometryError` (kind ``precision``) when any coordinate of the picture is
     not finite, as near the largest floating-point numbers.
     """
+    spline = _joined([s for s, _ in parts])
     c = spline.columns
     with np.errstate(all="ignore"):
-        path = curve.eval(np.linspace(0.0, 1.0, 400))
-        low, high = path.min(axis=0), path.max(axis=0)
+        paths = [
+            curve.eval(np.linspace(*curve.domain, 400 + 16 * int(curve.domain[1] - curve.domain[0])))
+            for _, curve in parts
+        ]
+        every = np.concatenate(paths)
+        low, high = every.min(axis=0), every.max(axis=0)
         extent = float(max(high[0] - low[0], high[1] - low[1], 1e-300))
         # Centres near the curve join the picture; far ones (flat arcs) show by their spokes.
         centres = c.center[c.is_arc]
@@ -133,12 +151,13 @@ def layout(curve: Curve, spline: ArcSpline) -> Layout:
             y = (y1 - points[..., 1]) * scale + HEADER_PX
             return np.stack([x, y], axis=-1)
 
-        deviation, band_out, band_in = _deviation_curves(curve, spline, magnify)
+        curves = [_deviation_curves(curve, part, magnify) for part, curve in parts]
+        deviation, band_out, band_in = (np.concatenate(a) for a in zip(*curves, strict=True))
         result = Layout(
             width_px=WIDTH_PX,
             height_px=height_px,
             magnify=magnify,
-            path=xy(path),
+            paths=[xy(path) for path in paths],
             starts=xy(c.start),
             ends=xy(c.end),
             centres=xy(c.center),
@@ -147,7 +166,7 @@ def layout(curve: Curve, spline: ArcSpline) -> Layout:
             band_out=xy(band_out),
             band_in=xy(band_in),
         )
-    arrays = (result.path, result.starts, result.ends, result.curve, result.band_out)
+    arrays = (*result.paths, result.starts, result.ends, result.curve, result.band_out)
     finite = all(bool(np.isfinite(a).all()) for a in (*arrays, result.band_in))
     arcs = c.is_arc
     finite = finite and bool(np.isfinite(result.centres[arcs]).all())
@@ -163,10 +182,11 @@ def _points(points: FloatArray) -> str:
     return " ".join(f"{x:.2f},{y:.2f}" for x, y in points.tolist())
 
 
-def render_svg(curve: Curve, spline: ArcSpline) -> str:
+def render_svg(parts: Sequence[Part]) -> str:
     """The picture described in the module docstring, as an SVG document."""
+    spline = _joined([s for s, _ in parts])
     c = spline.columns
-    picture = layout(curve, spline)
+    picture = layout(parts)
     width, height, magnify = picture.width_px, picture.height_px, picture.magnify
     stroke = max(1.0, width / 600)
     out: list[str] = [
@@ -179,9 +199,10 @@ def render_svg(curve: Curve, spline: ArcSpline) -> str:
     for outer, inner in zip(picture.band_out, picture.band_in, strict=True):
         out.append(f'<polygon points="{_points(np.concatenate([outer, inner[::-1]]))}"/>')
     out.append("</g>")
-    out.append(
-        f'<polyline points="{_points(picture.path)}" fill="none" stroke="black" '
+    out.extend(
+        f'<polyline points="{_points(path)}" fill="none" stroke="black" '
         f'stroke-width="{stroke * 0.6:.2f}"/>'
+        for path in picture.paths
     )
     starts, ends = picture.starts.tolist(), picture.ends.tolist()
     centres, radii = picture.centres.tolist(), picture.radii.tolist()
@@ -214,8 +235,9 @@ def render_svg(curve: Curve, spline: ArcSpline) -> str:
     out.extend(f'<polyline points="{_points(segment)}"/>' for segment in picture.curve)
     out.append("</g>")
     s = spline.stats
+    arc_count = int(c.is_arc.sum())
     legend = [
-        f"{s.arc_count} arcs, {s.line_count} lines ({spline.strategy}); "
+        f"{arc_count} arcs, {len(c) - arc_count} lines ({spline.strategy}); "
         f"tolerance {spline.tolerance:.3g}, max deviation {s.max_deviation:.3g} "
         f"(ratio {s.deviation_ratio:.2f})",
         f"green: deviation ×{magnify:g} inside the grey band ±tolerance ×{magnify:g}; "
@@ -233,8 +255,8 @@ class SvgWriter:
     name = "svg"
     media_type = MEDIA_TYPE
 
-    def write(self, spline: ArcSpline, curve: Curve, options: Any = None) -> str:
-        return render_svg(curve, spline)
+    def write(self, parts: Sequence[Part], options: Any = None) -> str:
+        return render_svg(parts)
 
 
 WRITER = SvgWriter()

@@ -156,7 +156,7 @@ _NOT_FINITE = GeometryError(
 def _write(job: Job, curve: Curve, spline: ArcSpline) -> dict[str, str] | GcodeError:
     """Every output the job asks for, by writer name, or the first writer's refusal."""
     try:
-        return {name: WRITERS[name].write(spline, curve, options) for name, options in job.outputs}
+        return {name: WRITERS[name].write([(spline, curve)], options) for name, options in job.outputs}
     except GcodeError as error:
         return error
 
@@ -210,7 +210,7 @@ def render(job: Job, limits: Limits) -> Document | GeometryError | GcodeError:
         spline = approximate(curve, job.tolerance, job.strategy, limits)
         (name, options), *_ = job.outputs
         writer = WRITERS[name]
-        text = writer.write(spline, curve, options)
+        text = writer.write([(spline, curve)], options)
     except (GeometryError, GcodeError) as error:
         return error
     return Document(body=text.encode(), media_type=writer.media_type)

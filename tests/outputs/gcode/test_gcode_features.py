@@ -69,7 +69,7 @@ def test_comment_header_states_tolerance_strategy_counts_and_deviations() -> Non
     )
     spline_dev = float(re.search(r"max deviation ([0-9.e-]+) mm", text).group(1))  # type: ignore[union-attr]
     assert spline_dev == pytest.approx(stats.max_deviation, rel=1e-5)
-    stated = float(re.search(r"from the spiral ([0-9.e-]+) mm", text).group(1))  # type: ignore[union-attr]
+    stated = float(re.search(r"from the curve ([0-9.e-]+) mm", text).group(1))  # type: ignore[union-attr]
     assert stats.max_deviation - w.ulp <= stated <= w.spline.tolerance + w.ulp
     # The stated figure is the writer's own measurement; the oracle's agrees to the rounding.
     measured = readback.deviation(w.spiral, w.spline, w.program)

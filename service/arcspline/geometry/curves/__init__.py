@@ -15,11 +15,16 @@ from .spiral import Spiral, SpiralFromControlPoints, SpiralFromParameters
 
 
 class Curve(Protocol):
-    """What the package needs of a curve (the parameter ``u`` runs over ``[0, 1]``)."""
+    """What the package needs of a curve (the parameter ``u`` runs over :attr:`domain`:
+    ``[0, 1]`` for a spiral, ``[0, pieces]`` for a subpath of a path)."""
 
     @property
     def frame(self) -> tuple[float, ...]:
         """The kernels' input row (``fit.batch.FRAME_FIELDS``)."""
+
+    @property
+    def domain(self) -> tuple[float, float]:
+        """The range of the parameter ``u``."""
 
     @property
     def start(self) -> Point:

@@ -229,6 +229,10 @@ class Spiral:
         """The largest coordinate magnitude of the control points (for rounding margins)."""
         return max(abs(v) for point in self._points for v in point)
 
+    @property
+    def domain(self) -> tuple[float, float]:
+        return (0.0, 1.0)
+
     @cached_property
     def frame(self) -> tuple[float, ...]:
         """What the kernels need of the spiral, in ``fit.batch.FRAME_FIELDS`` order: the
@@ -239,7 +243,7 @@ class Spiral:
         c, s = math.cos(self.turn_angle_rad), math.sin(self.turn_angle_rad)
         return (
             x0, y0, tx, ty, self.a, float(self.turn_direction), x3, y3, self.chord,
-            self.coordinate_scale, 3.0, 0.0, 1.2 * c * c - 1.0, 0.0, 0.0, 1.2 * c * s, 0.0, 0.0,
+            self.coordinate_scale, 3.0, 0.0, 1.2 * c * c - 1.0, 0.0, 0.0, 1.2 * c * s, 0.0, 0.0, 0.0,
         )  # fmt: skip
 
     # -- evaluation (Bernstein form) ---------------------------------------------------

@@ -31,6 +31,7 @@ class FitMany(Protocol):
         tolerances: FloatArray,
         max_segments: int,
         min_relative_tolerance: float,
+        shared: bool = False,
         /,
     ) -> Batch: ...
 

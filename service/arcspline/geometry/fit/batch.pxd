@@ -3,5 +3,6 @@ from arcspline.geometry.fit.arcs cimport FitFn
 
 
 cdef object run(
-    frames, tolerances, int max_segments, double min_relative_tolerance, FitFn fit
+    frames, tolerances, int max_segments, double min_relative_tolerance, FitFn fit,
+    bint shared=*
 )

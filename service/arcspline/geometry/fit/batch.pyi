@@ -7,6 +7,7 @@ FRAME_FIELDS: tuple[str, ...]
 FIELDS: tuple[str, ...]
 STATS_FIELDS: tuple[str, ...]
 STATUS: dict[str, int]
+PIECE_KINDS: dict[str, int]
 
 def tolerance_floor(
     chord: float, coordinate_scale: float, min_relative_tolerance: float

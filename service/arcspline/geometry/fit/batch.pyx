@@ -15,13 +15,13 @@ radius). A spiral's rows depend on that spiral alone, whatever else is in the ba
 """
 
 from libc.float cimport DBL_EPSILON as EPS
-from libc.math cimport INFINITY, NAN, atan2, fabs, fabsl, hypot, isfinite, sqrt, sqrtl
+from libc.math cimport INFINITY, NAN, atan2, fabs, fabsl, hypot, isfinite, sin, sqrt, sqrtl
 from libc.stdlib cimport free, malloc
 from libcpp.vector cimport vector
 
 import numpy as np
 
-from arcspline.geometry.curves.piece cimport Piece, arc_length
+from arcspline.geometry.curves.piece cimport Piece, arc_length, point
 from arcspline.geometry.deviation cimport line_deviation
 from arcspline.geometry.fit.arcs cimport (
     BAD_TOLERANCE,
@@ -57,12 +57,20 @@ cdef extern from *:
 
 FRAME_FIELDS = (
     "x0", "y0", "cos_phi", "sin_phi", "scale", "mirror", "end_x", "end_y", "chord",
-    "coordinate_scale", "x1", "x2", "x3", "y1", "y2", "y3", "w1", "w2",
+    "coordinate_scale", "x1", "x2", "x3", "y1", "y2", "y3", "w1", "w2", "kind",
 )
 cdef enum:  # FrameField
     X0, Y0, COS_PHI, SIN_PHI, SCALE, MIRROR, END_X, END_Y, CHORD, COORDINATE_SCALE
-    PX1, PX2, PX3, PY1, PY2, PY3, PW1, PW2
+    PX1, PX2, PX3, PY1, PY2, PY3, PW1, PW2, KIND
     FRAME_WIDTH
+
+#: What a frame row's ``kind`` asks for: a fit by the strategy, or the piece itself as one
+#: line (an input line) or one arc (a piece of an input circular arc), exactly.
+PIECE_KINDS = {"fit": 0, "line": 1, "arc": 2}
+cdef enum:  # PieceKind
+    FIT_PIECE = 0
+    LINE_PIECE = 1
+    ARC_PIECE = 2
 
 FIELDS = (
     "is_arc", "start_x", "start_y", "end_x", "end_y", "center_x", "center_y", "radius",
@@ -256,6 +264,21 @@ cdef Status assemble(
     return OK
 
 
+cdef inline Arc exact_arc(const Piece* p, int kind) noexcept nogil:
+    """An input line or circular-arc piece as its one segment (deviation 0). In the local
+    frame the piece leaves the origin along +x and turns left, so an arc's sweep is twice the
+    angle of its end point ``E`` and its radius ``|E| / (2·sin(sweep/2))``."""
+    cdef Vec e = point(p, 1.0)
+    cdef Arc arc
+    cdef double half = atan2(e.y, e.x) if kind == ARC_PIECE else 0.0
+    arc.x0, arc.y0, arc.x1, arc.y1 = 0.0, 0.0, e.x, e.y
+    arc.tx, arc.ty = 1.0, 0.0
+    arc.sweep = 2.0 * half
+    arc.radius = hypot(e.x, e.y) / (2.0 * sin(half)) if half > 0.0 else INFINITY
+    arc.u0, arc.u1, arc.dev, arc.u_dev = 0.0, 1.0, 0.0, 0.0
+    return arc
+
+
 cdef class Block:
     """Rows of the segment table in memory the kernels wrote directly (no copy): a
     ``(rows, WIDTH)`` float64 buffer, which ``numpy.asarray`` wraps."""
@@ -300,10 +323,14 @@ cdef enum:
 
 
 cdef object run(
-    frames, tolerances, int max_segments, double min_relative_tolerance, FitFn fit
+    frames, tolerances, int max_segments, double min_relative_tolerance, FitFn fit,
+    bint shared=False
 ):
-    """Fit every spiral of ``frames`` (rows of ``FRAME_FIELDS``) within its tolerance with
-    the strategy kernel ``fit``; see the module text for the results."""
+    """Fit every piece of ``frames`` (rows of ``FRAME_FIELDS``) within its tolerance with
+    the strategy kernel ``fit``; see the module text for the results. ``max_segments`` holds
+    for each piece alone, or, if ``shared``, for all of them together (the pieces of one
+    path): a piece that would pass what the pieces before it left is refused with
+    ``SEGMENT_LIMIT`` and so are all after it."""
     cdef const double[:, ::1] frame = frames
     cdef const double[::1] tol = tolerances
     cdef Py_ssize_t n = frame.shape[0], i
@@ -326,7 +353,12 @@ cdef object run(
     cdef Piece s
     cdef double t, chord, coordinates, margin
     cdef Status outcome
+    cdef long long left = max_segments
+    cdef int kind
     for i in range(n):
+        if shared and left <= 0:
+            status[i] = SEGMENT_LIMIT
+            continue
         t = tol[i]
         chord, coordinates = frame[i, CHORD], frame[i, COORDINATE_SCALE]
         if not (isfinite(t) and t > 0.0):
@@ -345,8 +377,13 @@ cdef object run(
         s.rational = s.w[1] != 0.0 or s.w[2] != 0.0
         margin = rounding_margin(chord, coordinates)
         arcs.clear()
-        with nogil:
-            outcome = fit(&s, (t - margin) / f.scale, max_segments, &arcs)
+        kind = <int>frame[i, KIND]
+        if kind == FIT_PIECE:
+            with nogil:
+                outcome = fit(&s, (t - margin) / f.scale, left if shared else max_segments, &arcs)
+        else:
+            arcs.push_back(exact_arc(&s, kind))
+            outcome = OK
         if outcome == OK and used + <Py_ssize_t>arcs.size() > capacity:
             capacity = max(<Py_ssize_t>arcs.size(), min(2 * capacity, MAX_BLOCK_ROWS))
             block = Block(capacity)
@@ -362,6 +399,7 @@ cdef object run(
             where[i, 0], where[i, 1] = len(blocks) - 1, used
             used += arcs.size()
             where[i, 2] = used
+            left -= <long long>arcs.size()
         else:
             status[i] = outcome
     filled.append(used)

@@ -707,7 +707,9 @@ cdef Status fewest(
     return OK
 
 
-def fit_many(frames, tolerances, int max_segments, double min_relative_tolerance):
+def fit_many(
+    frames, tolerances, int max_segments, double min_relative_tolerance, bint shared=False
+):
     """Strategy ``fewest-arcs`` for a batch of spirals (``fit/batch.pyx`` documents the table
     and results)."""
-    return batch.run(frames, tolerances, max_segments, min_relative_tolerance, fewest)
+    return batch.run(frames, tolerances, max_segments, min_relative_tolerance, fewest, shared)

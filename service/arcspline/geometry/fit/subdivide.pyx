@@ -143,7 +143,9 @@ cdef Status subdivide(
     return OK
 
 
-def fit_many(frames, tolerances, int max_segments, double min_relative_tolerance):
+def fit_many(
+    frames, tolerances, int max_segments, double min_relative_tolerance, bint shared=False
+):
     """Strategy ``subdivide`` for a batch of spirals (``fit/batch.pyx`` documents the table
     and results)."""
-    return batch.run(frames, tolerances, max_segments, min_relative_tolerance, subdivide)
+    return batch.run(frames, tolerances, max_segments, min_relative_tolerance, subdivide, shared)

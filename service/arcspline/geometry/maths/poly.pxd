@@ -257,3 +257,27 @@ cdef inline bint positive_on(const double* c, int degree, double lo, double hi) 
         for i in range(n):
             low = min(low, horner(c, degree, points[i]))
     return low > 0.0
+
+
+cdef inline int roots_in(
+    const double* c, int degree, double lo, double hi, double* out
+) noexcept nogil:
+    """The roots of ``c`` strictly inside ``(lo, hi)``, ascending, into ``out``; their number.
+    Of :func:`critical_points`, those where ``c`` is zero to its rounding error (the roots
+    of derivatives there are not). For split points, where a root missed or doubled only
+    moves where a piece ends."""
+    cdef double points[MAX_POINTS]
+    cdef int n = critical_points(c, degree, lo, hi, points, False, False), i, count = 0, k
+    cdef double x, value, bound
+    for i in range(n):
+        x = points[i]
+        if not lo < x < hi:
+            continue
+        value, bound = c[degree], fabs(c[degree])
+        for k in range(degree - 1, -1, -1):
+            value = value * x + c[k]
+            bound = bound * fabs(x) + fabs(c[k])
+        if fabs(value) <= 1e3 * (degree + 1) * DBL_EPSILON * bound:
+            out[count] = x
+            count += 1
+    return count

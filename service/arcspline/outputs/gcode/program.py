@@ -1,12 +1,14 @@
-"""The program text: preamble, rapid to the start (with the 2.5-D retract and plunge), one
-block per planned move, ``M2``; optional header comments and line numbers."""
+"""The program text: preamble; per part (a spiral, or each subpath of a path) a rapid to its
+start (with the 2.5-D retract and plunge) and one block per planned move; ``M2``; optional
+header comments and line numbers."""
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 
 from arcspline.geometry import ArcSpline, Curve
 
+from ..part import Part
 from .lattice import feed_word, fixed_point
 from .options import GcodeError, GcodeOptions
 from .plan import Plan, plan_program
@@ -15,67 +17,88 @@ from .plan import Plan, plan_program
 MAX_LINE_NUMBER = 99_999
 
 
-def _text(plan: Plan, spline: ArcSpline, options: GcodeOptions) -> Iterator[str]:
+def _header(plans: Sequence[Plan], parts: Sequence[Part], options: GcodeOptions) -> Iterator[str]:
+    d = options.resolved_decimals
+    units = options.units
+    first = parts[0][0]
+    arc_count = sum(spline.stats.arc_count for spline, _ in parts)
+    line_count = sum(spline.stats.line_count for spline, _ in parts)
+    worst = max(spline.stats.max_deviation for spline, _ in parts)
+    arcs = sum(w is not None for plan in plans for w in plan.arcs)
+    moves = sum(len(plan.arcs) for plan in plans)
+    measured = max(float(plan.deviation.max()) for plan in plans)
+    yield "(arcspline: curves as circular arcs, after Walton and Meek 1996)"
+    yield f"(tolerance {first.tolerance:.6g} {units}, strategy {first.strategy})"
+    yield (
+        f"(arc spline: {arc_count} arcs, {line_count} lines, max deviation {worst:.6g} {units}"
+        + (f", {len(parts)} paths)" if len(parts) > 1 else ")")
+    )
+    yield f"(program: {moves} moves, {arcs} arcs G2 G3, {moves - arcs} lines G1)"
+    yield f"(measured max deviation of the program from the curve {measured:.6g} {units}, {d} decimals)"
+
+
+def _text(plans: Sequence[Plan], parts: Sequence[Part], options: GcodeOptions) -> Iterator[str]:
     """The program's lines, without line numbers."""
     d = options.resolved_decimals
     units = options.units
     feed = feed_word(options.feed_rate, d)
     if options.comments:
-        stats = spline.stats
-        arcs = sum(w is not None for w in plan.arcs)
-        moves = len(plan.arcs)
-        yield "(arcspline: cubic Bezier spiral as circular arcs, Walton and Meek 1996)"
-        yield f"(tolerance {spline.tolerance:.6g} {units}, strategy {spline.strategy})"
-        yield (
-            f"(arc spline: {stats.arc_count} arcs, {stats.line_count} lines, "
-            f"max deviation {stats.max_deviation:.6g} {units})"
-        )
-        yield f"(program: {moves} moves, {arcs} arcs G2 G3, {moves - arcs} lines G1)"
-        yield (
-            f"(measured max deviation of the program from the spiral "
-            f"{float(plan.deviation.max()):.6g} {units}, {d} decimals)"
-        )
+        yield from _header(plans, parts, options)
     yield f"G17 {'G21' if units == 'mm' else 'G20'} G90 G91.1 G94 {feed}"
-    x0, y0 = fixed_point(plan.start[0], d), fixed_point(plan.start[1], d)
-    restore = ""
-    if options.safe_z is not None and options.cut_z is not None:
+    two_and_a_half = options.safe_z is not None and options.cut_z is not None
+    safe = cut = plunge = ""
+    if options.safe_z is not None:
         safe = fixed_point(round(options.safe_z * 10**d), d)
+    if two_and_a_half:
+        assert options.cut_z is not None
         cut = fixed_point(round(options.cut_z * 10**d), d)
         plunge = feed_word(options.resolved_plunge_feed_rate, d)
-        yield f"G0 Z{safe}"
-        yield f"G0 X{x0} Y{y0}"
-        if plunge == feed:
-            yield f"G1 Z{cut}"
-        else:
-            yield f"G1 Z{cut} {plunge}"
-            restore = f" {feed}"
-    else:
-        yield f"G0 X{x0} Y{y0}"
-    for k, (end, arc) in enumerate(zip(plan.ends, plan.arcs, strict=True)):
-        words = f"X{fixed_point(end[0], d)} Y{fixed_point(end[1], d)}"
-        if arc is not None:
-            if arc.radius is not None:
-                words += f" R{fixed_point(arc.radius, d)}"
+    for plan in plans:
+        x0, y0 = fixed_point(plan.start[0], d), fixed_point(plan.start[1], d)
+        restore = ""
+        if two_and_a_half:
+            yield f"G0 Z{safe}"
+            yield f"G0 X{x0} Y{y0}"
+            if plunge == feed:
+                yield f"G1 Z{cut}"
             else:
-                assert arc.offset is not None
-                words += f" I{fixed_point(arc.offset[0], d)} J{fixed_point(arc.offset[1], d)}"
-        code = "G1" if arc is None else "G3" if arc.ccw else "G2"
-        yield f"{code} {words}{restore if k == 0 else ''}"
+                yield f"G1 Z{cut} {plunge}"
+                restore = f" {feed}"
+        else:
+            yield f"G0 X{x0} Y{y0}"
+        for k, (end, arc) in enumerate(zip(plan.ends, plan.arcs, strict=True)):
+            words = f"X{fixed_point(end[0], d)} Y{fixed_point(end[1], d)}"
+            if arc is not None:
+                if arc.radius is not None:
+                    words += f" R{fixed_point(arc.radius, d)}"
+                else:
+                    assert arc.offset is not None
+                    words += f" I{fixed_point(arc.offset[0], d)} J{fixed_point(arc.offset[1], d)}"
+            code = "G1" if arc is None else "G3" if arc.ccw else "G2"
+            yield f"{code} {words}{restore if k == 0 else ''}"
     if options.safe_z is not None:
-        yield f"G0 Z{fixed_point(round(options.safe_z * 10**d), d)}"
+        yield f"G0 Z{safe}"
     yield "M2"
 
 
 def write_program(spline: ArcSpline, curve: Curve, options: GcodeOptions) -> str:
-    """The G-code program cutting ``spline``, an approximation of ``curve``.
+    """The G-code program cutting ``spline``, an approximation of ``curve``
+    (:func:`write_parts` of one part)."""
+    return write_parts([(spline, curve)], options)
 
-    Raises :class:`GcodeError` when the spiral's coordinates are too large to write
+
+def write_parts(parts: Sequence[Part], options: GcodeOptions) -> str:
+    """One G-code program cutting every part in order, with a rapid (at ``safe_z``, if
+    given) between them.
+
+    Raises :class:`GcodeError` when a curve's coordinates are too large to write
     (``spiral``), or when ``options.decimals`` are too coarse for the spline's tolerance: the
-    path read back from the program would leave ``tolerance + 10^-decimals`` of the spiral.
+    path read back from the program would leave ``tolerance + 10^-decimals`` of the curve.
     """
-    if len(spline) == 0:
+    if not parts or any(len(spline) == 0 for spline, _ in parts):
         raise GcodeError("spiral", "the arc spline has no segments")
-    lines = list(_text(plan_program(spline, curve, options), spline, options))
+    plans = [plan_program(spline, curve, options) for spline, curve in parts]
+    lines = list(_text(plans, parts, options))
     if options.line_numbers:
         coded = [k for k, text in enumerate(lines) if not text.startswith("(")]
         step = 10 if 10 * len(coded) <= MAX_LINE_NUMBER else 1
@@ -94,8 +117,8 @@ class GcodeWriter:
     name = "gcode"
     media_type = "text/x-gcode"
 
-    def write(self, spline: ArcSpline, curve: Curve, options: GcodeOptions) -> str:
-        return write_program(spline, curve, options)
+    def write(self, parts: Sequence[Part], options: GcodeOptions) -> str:
+        return write_parts(parts, options)
 
 
 WRITER = GcodeWriter()

@@ -1,0 +1,428 @@
+"""Paths of any segments approximated as one arc spline per subpath (docs/method.md §11).
+
+A path's segments are written to one table (``curves/split.pyx``'s ``SEGMENT_FIELDS``), cut
+into pieces of monotone curvature, fitted in one compiled loop under one segment budget for
+the whole path (``fit/batch.pyx``), and gathered back per subpath. Each subpath's result is an
+:class:`~arcspline.geometry.spline.ArcSpline` whose parameter ``u`` is the *piece parameter*
+``g = k + u_k`` (piece ``k``, local ``u_k``), paired with a :class:`SubpathCurve` that
+evaluates and measures the source in that parameter (what the G-code planner and the preview
+need); :meth:`SubpathSpline.sources` turns ``g`` into the input segment and its own
+parameter ``t``.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+import numpy.typing as npt
+
+from .curves.segments import CircularArc, Cubic, EllipticalArc, Line, Path, Quadratic, Segment
+from .curves.split import SEGMENT_FIELDS, SEGMENT_KINDS, split
+from .errors import GeometryError
+from .fit import STRATEGIES, FitMany, StrategyName
+from .fit.batch import FRAME_FIELDS, PIECE_KINDS, STATS_FIELDS, STATUS
+from .limits import DEFAULT_LIMITS, Limits
+from .measure import circle_deviations, line_deviations, points
+from .spline import COLUMN, ArcSpline, FloatArray, Point, SplineStats
+
+IntArray = npt.NDArray[np.int64]
+
+#: Coordinates and radii stay below this magnitude, so that squares and products of them stay
+#: finite in double precision (as for spirals).
+MAX_MAGNITUDE = 1e150
+
+_SEG = {name: j for j, name in enumerate(SEGMENT_FIELDS)}
+_FRAME = {name: j for j, name in enumerate(FRAME_FIELDS)}
+_STATS = {name: j for j, name in enumerate(STATS_FIELDS)}
+_STATUS_NAME = {code: name for name, code in STATUS.items()}
+_ARC_PIECE = PIECE_KINDS["arc"]
+
+
+@dataclass(frozen=True, slots=True)
+class Source:
+    """Where an output segment comes from: input segment ``segment`` of its subpath, over
+    its parameter range ``[t_start, t_end]``; its largest deviation is reached at
+    ``t_at_max_deviation``."""
+
+    segment: IntArray
+    t_start: FloatArray
+    t_end: FloatArray
+    t_at_max_deviation: FloatArray
+
+
+class SubpathCurve:
+    """A subpath's source in the piece parameter ``g ∈ [0, pieces]`` (the
+    :class:`~arcspline.geometry.curves.Curve` protocol): ``g = k + u`` is piece ``k`` at its
+    local ``u``."""
+
+    def __init__(
+        self, frames: FloatArray, start: Point, end: Point, coordinate_scale: float
+    ) -> None:
+        self._frames = frames
+        self._start, self._end = start, end
+        self._coordinate_scale = coordinate_scale
+
+    @property
+    def frame(self) -> tuple[float, ...]:
+        raise TypeError("a subpath has one frame per piece (see SubpathCurve.frames)")
+
+    @property
+    def frames(self) -> FloatArray:
+        return self._frames
+
+    @property
+    def domain(self) -> tuple[float, float]:
+        return (0.0, float(len(self._frames)))
+
+    @property
+    def start(self) -> Point:
+        return self._start
+
+    @property
+    def end_point(self) -> Point:
+        return self._end
+
+    @property
+    def chord(self) -> float:
+        return math.dist(self._start, self._end)
+
+    @property
+    def coordinate_scale(self) -> float:
+        return self._coordinate_scale
+
+    def _local(self, g: FloatArray) -> tuple[IntArray, FloatArray]:
+        last = len(self._frames) - 1
+        piece = np.clip(np.floor(g), 0, last).astype(np.int64)
+        return piece, g - piece
+
+    def eval(self, u: float | FloatArray) -> FloatArray:
+        g = np.asarray(u, dtype=np.float64)
+        piece, local = self._local(g.ravel())
+        return points(self._frames, piece, local).reshape((*g.shape, 2))
+
+    def _ranges(
+        self, u0: FloatArray, u1: FloatArray
+    ) -> tuple[IntArray, IntArray, FloatArray, FloatArray]:
+        """Each query ``[u0, u1]`` cut at piece boundaries: (query, piece, lo, hi) per part."""
+        first, _ = self._local(np.asarray(u0, dtype=np.float64))
+        last = np.maximum(first, np.ceil(np.asarray(u1, dtype=np.float64)).astype(np.int64) - 1)
+        last = np.minimum(last, len(self._frames) - 1)
+        counts = last - first + 1
+        query = np.repeat(np.arange(len(first)), counts)
+        piece = first[query] + (np.arange(len(query)) - np.repeat(np.cumsum(counts) - counts, counts))
+        lo = np.clip(np.asarray(u0)[query] - piece, 0.0, 1.0)
+        hi = np.clip(np.asarray(u1)[query] - piece, 0.0, 1.0)
+        return query, piece, lo, hi
+
+    def line_deviations(
+        self, u0: FloatArray, u1: FloatArray, start: FloatArray, end: FloatArray
+    ) -> FloatArray:
+        query, piece, lo, hi = self._ranges(u0, u1)
+        parts = line_deviations(self._frames, piece, lo, hi, start[query], end[query])
+        out = np.zeros(len(u0))
+        np.maximum.at(out, query, parts)
+        return out
+
+    def circle_deviations(
+        self,
+        u0: FloatArray,
+        u1: FloatArray,
+        centre: FloatArray,
+        r_start: FloatArray,
+        r_end: FloatArray,
+    ) -> FloatArray:
+        query, piece, lo, hi = self._ranges(u0, u1)
+        parts = circle_deviations(
+            self._frames, piece, lo, hi, centre[query], r_start[query], r_end[query]
+        )
+        out = np.zeros(len(u0))
+        np.maximum.at(out, query, parts)
+        return out
+
+
+@dataclass(frozen=True, slots=True)
+class SubpathSpline:
+    """One subpath's arc spline (parameter: the piece parameter ``g``), its source curve
+    and, per output segment, which input segment it answers for."""
+
+    spline: ArcSpline
+    curve: SubpathCurve
+    closed: bool
+    pieces: FloatArray  # per piece: segment, t0, t1, half angle (split.PIECE_FIELDS)
+
+    def sources(self) -> Source:
+        """The input segment and its parameter ``t`` for every output segment."""
+        cols = self.spline.table
+        g0, g1 = cols[:, COLUMN["u_start"]], cols[:, COLUMN["u_end"]]
+        gm = cols[:, COLUMN["u_at_max_deviation"]]
+        segment, t0 = self._segment_t(g0, upper=False)
+        _, t1 = self._segment_t(g1, upper=True)
+        at_segment, tm = self._segment_t(gm, upper=False)
+        # A maximum at a piece boundary may read as the next segment's start: take the end
+        # of the row's own segment instead.
+        tm = np.where(at_segment == segment, tm, 1.0)
+        return Source(segment=segment, t_start=t0, t_end=t1, t_at_max_deviation=tm)
+
+    def _segment_t(self, g: FloatArray, *, upper: bool) -> tuple[IntArray, FloatArray]:
+        last = len(self.pieces) - 1
+        piece = np.clip(np.floor(g), 0, last).astype(np.int64)
+        if upper:  # an end at a piece boundary belongs to the piece before
+            piece = np.where((g == piece) & (piece > 0), piece - 1, piece)
+        u = g - piece
+        seg, t0, t1, half = (self.pieces[piece, j] for j in range(4))
+        with np.errstate(invalid="ignore", divide="ignore"):
+            conic = 0.5 + np.arctan(np.tan(0.5 * half) * (2.0 * u - 1.0)) / half
+        fraction = np.where(half > 0.0, conic, u)
+        return seg.astype(np.int64), t0 + (t1 - t0) * fraction
+
+
+@dataclass(frozen=True, slots=True)
+class PathSpline:
+    """A path's approximation: one :class:`SubpathSpline` per subpath, the statistics over
+    all of them, the tolerance and the strategy."""
+
+    subpaths: tuple[SubpathSpline, ...]
+    stats: SplineStats
+    tolerance: float
+    strategy: str
+
+    @property
+    def segment_count(self) -> int:
+        return sum(len(s.spline) for s in self.subpaths)
+
+
+def segment_row(segment: Segment) -> list[float]:
+    """A segment as a row of ``SEGMENT_FIELDS`` (its kind, points and arc parameters)."""
+    row = [0.0] * len(SEGMENT_FIELDS)
+    (x0, y0), (x3, y3) = segment.start, segment.end
+    row[_SEG["x0"]], row[_SEG["y0"]], row[_SEG["x3"]], row[_SEG["y3"]] = x0, y0, x3, y3
+    coords = [x0, y0, x3, y3]
+    if isinstance(segment, Line):
+        kind = "line"
+    elif isinstance(segment, Quadratic):
+        kind = "quadratic"
+        row[_SEG["x1"]], row[_SEG["y1"]] = segment.control
+        coords += segment.control
+    elif isinstance(segment, Cubic):
+        kind = "cubic"
+        row[_SEG["x1"]], row[_SEG["y1"]] = segment.control1
+        row[_SEG["x2"]], row[_SEG["y2"]] = segment.control2
+        coords += [*segment.control1, *segment.control2]
+    else:
+        kind = "arc" if isinstance(segment, CircularArc) else "elliptical_arc"
+        if isinstance(segment, CircularArc):
+            rx = ry = segment.radius
+            rotation = 0.0
+        else:
+            rx, ry, rotation = segment.rx, segment.ry, segment.rotation_rad
+        cx, cy = segment.center
+        row[_SEG["cx"]], row[_SEG["cy"]], row[_SEG["rx"]], row[_SEG["ry"]] = cx, cy, rx, ry
+        row[_SEG["rotation_rad"]] = rotation
+        row[_SEG["start_angle_rad"]] = segment.start_angle_rad
+        row[_SEG["sweep_rad"]] = segment.sweep_rad
+        coords += [abs(cx) + max(rx, ry), abs(cy) + max(rx, ry)]
+    row[_SEG["kind"]] = float(SEGMENT_KINDS[kind])
+    row[_SEG["coordinate_scale"]] = max(abs(v) for v in coords)
+    return row
+
+
+def _check(segment: Segment, where: str) -> None:
+    """Numbers the kernels can hold: finite, below ``MAX_MAGNITUDE``; radii > 0; sweeps
+    within a full turn."""
+    values = [v for part in segment for v in (part if isinstance(part, tuple) else (part,))]
+    if not all(math.isfinite(v) and abs(v) < MAX_MAGNITUDE for v in values):
+        raise GeometryError(where, f"has a number that is not finite or beyond ±{MAX_MAGNITUDE:g}")
+    if isinstance(segment, CircularArc | EllipticalArc):
+        radii = (
+            (segment.radius,) if isinstance(segment, CircularArc) else (segment.rx, segment.ry)
+        )
+        if not all(r > 0.0 for r in radii):
+            raise GeometryError(where, "an arc's radii must be > 0")
+        if not 0.0 < abs(segment.sweep_rad) < 2.0 * math.pi:
+            raise GeometryError(where, "an arc's sweep must be non-zero and less than a full turn")
+
+
+def approximate_path(
+    path: Path,
+    tolerance: float,
+    strategy: StrategyName = "subdivide",
+    limits: Limits = DEFAULT_LIMITS,
+) -> PathSpline:
+    """The arc splines of every subpath of ``path`` within ``tolerance``, by ``strategy``.
+
+    ``limits.max_segments`` caps the output segments of the whole path. Raises
+    :class:`GeometryError` naming the subpath and segment for input the core cannot take, and
+    for a tolerance it cannot meet there.
+    """
+    fit = _strategy(strategy)
+    if not (isinstance(tolerance, int | float) and math.isfinite(tolerance) and tolerance > 0):
+        raise GeometryError("tolerance", f"must be a finite number > 0, got {tolerance!r}")
+    if not path.subpaths:
+        raise GeometryError("path", "has no subpaths")
+    rows: list[list[float]] = []
+    owner: list[tuple[int, int]] = []
+    for i, sub in enumerate(path.subpaths):
+        if not sub.segments:
+            raise GeometryError(f"path.subpaths[{i}]", "has no segments")
+        for j, segment in enumerate(sub.segments):
+            _check(segment, _where(i, j))
+            rows.append(segment_row(segment))
+            owner.append((i, j))
+    table = np.array(rows, dtype=np.float64)
+    frames, pieces = split(table, limits.max_segments)
+    if frames is None or pieces is None:
+        raise GeometryError(
+            "tolerance",
+            f"the path needs more than the limit of {limits.max_segments} segments; split it "
+            "into several requests",
+            kind="segment_limit",
+            limit=float(limits.max_segments),
+        )
+    tol = np.full(len(frames), float(tolerance))
+    blocks, where, stats, status, _aux = fit(
+        frames, tol, limits.max_segments, limits.min_relative_tolerance, True
+    )
+    bad = np.flatnonzero(status != STATUS["ok"])
+    if len(bad):
+        k = int(bad[0])
+        i, j = owner[int(pieces[k, 0])]
+        raise _refusal(int(status[k]), tolerance, _where(i, j), frames[k], limits)
+    piece_segment = pieces[:, 0].astype(np.int64)
+    piece_subpath = np.array([owner[s][0] for s in piece_segment.tolist()], dtype=np.int64)
+    results = []
+    first_segment = 0
+    for i, sub in enumerate(path.subpaths):
+        ks = np.flatnonzero(piece_subpath == i)
+        local_pieces = pieces[ks].copy()
+        local_pieces[:, 0] -= first_segment
+        first_segment += len(sub.segments)
+        if len(ks) == 0:
+            raise GeometryError(f"path.subpaths[{i}]", "has no length (all its points coincide)")
+        parts = []
+        for n, k in enumerate(ks.tolist()):
+            block, begin, end = where[k]
+            part = blocks[block][begin:end].copy()
+            for name in ("u_start", "u_end", "u_at_max_deviation"):
+                part[:, COLUMN[name]] += n
+            parts.append(part)
+        body = _merge_circular(np.concatenate(parts), local_pieces, frames[ks], sub.segments)
+        start = sub.segments[0].start
+        curve = SubpathCurve(
+            frames[ks],
+            Point(*start),
+            Point(*sub.segments[-1].end),
+            float(frames[ks, _FRAME["coordinate_scale"]].max()),
+        )
+        length = float(stats[ks, _STATS["spiral_length"]].sum())
+        spline = ArcSpline(body, _stats(body, length, tolerance), float(tolerance), strategy)
+        results.append(SubpathSpline(spline, curve, sub.closed, local_pieces))
+    total = np.concatenate([r.spline.table for r in results])
+    overall = _stats(total, sum(r.spline.stats.spiral_length for r in results), tolerance)
+    return PathSpline(tuple(results), overall, float(tolerance), strategy)
+
+
+def _merge_circular(
+    body: FloatArray, pieces: FloatArray, frames: FloatArray, segments: Sequence[Segment]
+) -> FloatArray:
+    """The rows of an input circular arc (one per quarter-turn piece) as the one arc it is:
+    its own centre, radius and sweep."""
+    kind = frames[:, _FRAME["kind"]]
+    if not np.any(kind == _ARC_PIECE):
+        return body
+    out = []
+    g = body[:, COLUMN["u_start"]]
+    row_piece = np.floor(g).astype(np.int64)
+    done: set[int] = set()
+    for r in range(len(body)):
+        k = int(row_piece[r])
+        seg = int(pieces[k, 0])
+        if kind[k] != _ARC_PIECE:
+            out.append(body[r])
+            continue
+        if seg in done:
+            continue
+        done.add(seg)
+        arc = segments[seg]
+        assert isinstance(arc, CircularArc)
+        mine = np.flatnonzero(pieces[row_piece, 0] == seg)
+        row = body[mine[0]].copy()
+        last = body[mine[-1]]
+        row[COLUMN["end_x"]], row[COLUMN["end_y"]] = last[COLUMN["end_x"]], last[COLUMN["end_y"]]
+        row[COLUMN["center_x"]], row[COLUMN["center_y"]] = arc.center
+        row[COLUMN["radius"]] = arc.radius
+        row[COLUMN["start_angle_rad"]] = math.atan2(
+            arc.start[1] - arc.center[1], arc.start[0] - arc.center[0]
+        )
+        row[COLUMN["sweep_rad"]] = arc.sweep_rad
+        row[COLUMN["length"]] = arc.radius * abs(arc.sweep_rad)
+        row[COLUMN["u_end"]] = last[COLUMN["u_end"]]
+        out.append(row)
+    return np.array(out)
+
+
+def _stats(table: FloatArray, curve_length: float, tolerance: float) -> SplineStats:
+    is_arc = table[:, COLUMN["is_arc"]] != 0.0
+    dev = table[:, COLUMN["max_deviation"]]
+    worst = int(np.argmax(dev))
+    radii = table[is_arc, COLUMN["radius"]]
+    row = [0.0] * len(STATS_FIELDS)
+    row[_STATS["arc_count"]] = float(is_arc.sum())
+    row[_STATS["line_count"]] = float((~is_arc).sum())
+    row[_STATS["max_deviation"]] = float(dev[worst])
+    row[_STATS["u_at_max_deviation"]] = float(table[worst, COLUMN["u_at_max_deviation"]])
+    row[_STATS["mean_segment_deviation"]] = float(dev.mean())
+    row[_STATS["spiral_length"]] = curve_length
+    row[_STATS["spline_length"]] = float(table[:, COLUMN["length"]].sum())
+    row[_STATS["min_radius"]] = float(radii.min()) if len(radii) else math.nan
+    row[_STATS["max_radius"]] = float(radii.max()) if len(radii) else math.nan
+    return SplineStats.of(row, tolerance)
+
+
+def _where(subpath: int, segment: int) -> str:
+    return f"path.subpaths[{subpath}].segments[{segment}]"
+
+
+def _strategy(name: str) -> FitMany:
+    try:
+        return STRATEGIES[name]
+    except (KeyError, TypeError):
+        raise GeometryError(
+            "strategy", f"unknown strategy {name!r}; choose one of {', '.join(STRATEGIES)}"
+        ) from None
+
+
+def _refusal(
+    code: int, tolerance: float, where: str, frame: FloatArray, limits: Limits
+) -> GeometryError:
+    why = _STATUS_NAME[code]
+    if why == "tolerance_floor":
+        from .fit.batch import tolerance_floor
+
+        floor = tolerance_floor(
+            float(frame[_FRAME["chord"]]),
+            float(frame[_FRAME["coordinate_scale"]]),
+            limits.min_relative_tolerance,
+        )
+        return GeometryError(
+            "tolerance",
+            f"{tolerance:.6g} is below the smallest reachable tolerance {floor:.6g} at {where} "
+            "(its size and coordinates); double precision cannot deliver less",
+            kind="tolerance_floor",
+            limit=floor,
+        )
+    if why == "segment_limit":
+        return GeometryError(
+            "tolerance",
+            f"{tolerance:.6g} needs more than the limit of {limits.max_segments} segments for "
+            f"this path (reached at {where}); raise the tolerance or split the path",
+            kind="segment_limit",
+            limit=float(limits.max_segments),
+        )
+    return GeometryError(
+        "tolerance",
+        f"{tolerance:.6g} cannot be held in double precision at {where}; raise the tolerance",
+        kind="precision",
+    )
