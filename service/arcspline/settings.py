@@ -76,6 +76,14 @@ class Settings(BaseSettings):
         le=MAX_SEGMENTS,
         description="Most segments in one arc spline (422 beyond).",
     )
+    path_max_segments: PositiveInt = Field(
+        default=50_000,
+        le=MAX_SEGMENTS,
+        description="Most output segments for one path, all subpaths together (422 beyond).",
+    )
+    path_max_input_segments: PositiveInt = Field(
+        default=20_000, description="Most input segments in one path's SVG data (422 beyond)."
+    )
     min_relative_tolerance: PositiveFloat = Field(
         default=DEFAULT_LIMITS.min_relative_tolerance,
         lt=1.0,
@@ -110,6 +118,14 @@ class Settings(BaseSettings):
         """The geometry core's limits, as configured."""
         return Limits(
             max_segments=self.max_segments, min_relative_tolerance=self.min_relative_tolerance
+        )
+
+    @property
+    def path_limits(self) -> Limits:
+        """The core's limits for a path: its output segments all together."""
+        return Limits(
+            max_segments=self.path_max_segments,
+            min_relative_tolerance=self.min_relative_tolerance,
         )
 
 

@@ -269,6 +269,16 @@ class SourceCurve:
         speed = _norm(self.deriv(_ld(t)))
         return bool(speed > 1e-12 * (len(self.cp) - 1) * legs)
 
+    @cached_property
+    def speed_scale(self) -> float:
+        """A bound on ``‖S'(t)‖``: ``n·`` the longest control leg of a Bézier, ``|Δφ|·max(rx,
+        ry)`` for an arc (the scale of the rounding noise in a computed ``S'``)."""
+        if self.kind == "bezier":
+            n = len(self.cp) - 1
+            legs = np.max(_norm(np.diff(self.cp, axis=0))) if n > 0 else LD(0)
+            return float(n * legs)
+        return float(abs(self.sweep) * max(abs(self.rx), abs(self.ry)))
+
     @property
     def degenerate(self) -> bool:
         """A single point (every control point equal, or a zero-sized arc)."""
@@ -345,13 +355,18 @@ def foot_distance(
     """Distance from each point to the source piece ``S([u0, u1])`` and its foot parameter.
 
     A global coarse search over ``samples`` (default :func:`coarse_samples` of the piece)
-    picks the ``starts`` nearest samples. Where ``g(t) = (S(t) − P)·S'(t)`` changes sign over
+    picks as starts the ``starts`` nearest *local minima* of the sampled distance along the
+    piece (one per branch of the curve that passes near the point), not merely the nearest
+    samples: where the grid is dense (it crowds at a turning point or a tight bend, being
+    even in turning too) the nearest few samples can all lie on one branch while the true
+    foot lies on another one a cell away. Where ``g(t) = (S(t) − P)·S'(t)`` changes sign over
     the two cells beside a start, safeguarded Newton (:func:`_newton_foot`) finds the foot
     there; elsewhere the nearest point of those cells is one of their ends, a sample no nearer
     than the start. The nearest candidate (samples included) wins, its distance evaluated in
     long double. The search runs in float64: at a foot the distance is stationary in ``t``, so
-    an error ``δ`` in ``t`` moves it by ``O(δ²)``. The result is never above the nearest
-    sample's, and exact whenever the nearest foot lies beside a start.
+    an error ``δ`` in ``t`` moves it by ``O(δ²)``. Every candidate is a point of the curve, so
+    the result is never below the true distance; it is never above the nearest sample's (the
+    global minimum is a local one), and exact whenever the nearest foot lies beside a start.
     """
     pts = _ld(points).reshape(-1, 2)
     if samples is None:
@@ -360,13 +375,19 @@ def foot_distance(
     k = len(grid)
     starts = min(starts, k)
     pts64 = pts.astype(np.float64)
+    speed_noise = ROUNDING_ULPS * EPS * src.speed_scale
     nearest = np.empty((len(pts), starts), dtype=np.intp)
     chunk = max(1, 500_000 // k)
     for b in range(0, len(pts), chunk):
         px, py = pts64[b : b + chunk, 0, None], pts64[b : b + chunk, 1, None]
         d2 = (px - qg[None, :, 0]) ** 2 + (py - qg[None, :, 1]) ** 2
+        if k > 1:  # keep only the local minima along the piece (ends: one neighbour)
+            inner = np.ones(d2.shape, dtype=bool)
+            inner[:, 1:] &= d2[:, 1:] <= d2[:, :-1]
+            inner[:, :-1] &= d2[:, :-1] <= d2[:, 1:]
+            d2 = np.where(inner, d2, np.inf)
         rows = np.arange(len(d2))
-        for j in range(starts):  # the nearest, the next nearest, ...
+        for j in range(starts):  # the nearest local minimum, the next nearest, ...
             nearest[b : b + chunk, j] = at = np.argmin(d2, axis=1)
             d2[rows, at] = np.inf
     best_d = np.full(len(pts), np.inf, dtype=LD)
@@ -378,9 +399,14 @@ def foot_distance(
         best_d = np.where(better, dist, best_d)
         best_t = np.where(better, grid[at], best_t)
         i_lo, i_hi = np.maximum(at - 1, 0), np.minimum(at + 1, k - 1)
-        g_lo = _dot(qg[i_lo] - pts64, samples.d1[i_lo])
-        g_hi = _dot(qg[i_hi] - pts64, samples.d1[i_hi])
-        live = np.flatnonzero((g_lo <= 0) & (g_hi >= 0))
+        r_lo, r_hi = qg[i_lo] - pts64, qg[i_hi] - pts64
+        g_lo, g_hi = _dot(r_lo, samples.d1[i_lo]), _dot(r_hi, samples.d1[i_hi])
+        # Where S' vanishes (a piece cut at a cusp or a turning point ends there), its
+        # computed value is rounding noise and so is the sign of g: a g within that noise
+        # brackets too (Newton then only searches a cell that may hold no foot).
+        live = np.flatnonzero(
+            (g_lo <= _norm(r_lo) * speed_noise) & (g_hi >= -_norm(r_hi) * speed_noise)
+        )
         if not len(live):
             continue
         p = pts64[live]
@@ -396,8 +422,9 @@ def foot_distance(
 def _newton_foot(src: SourceCurve, pts: Array, lo: Array, hi: Array, t: Array) -> Array:
     """Safeguarded Newton on ``g(t) = (S(t) − P)·S'(t)`` in ``[lo, hi]`` (``g(lo) ≤ 0 ≤
     g(hi)``): ``t ← t − g/g'`` with ``g' = ‖S'‖² + (S − P)·S''``, bisection when the step
-    leaves the bracket or ``g' ≤ 0``; the bracket shrinks on the sign of ``g``. Stops when no
-    step moves more than ``4·eps``."""
+    leaves the bracket or ``g' ≤ 0``; the bracket shrinks on the sign of ``g``. A root with
+    ``g' ≤ 0`` (where ``S' = 0``, a local maximum of the distance) is bisected away from, not
+    kept. Stops when no step moves more than ``4·eps``."""
     for _ in range(60):
         p, d1, d2 = src.derivatives(t)
         r = p - pts
@@ -408,7 +435,9 @@ def _newton_foot(src: SourceCurve, pts: Array, lo: Array, hi: Array, t: Array) -
         ok = gp > 0
         step = t - g / np.where(ok, gp, 1)
         new = np.where(ok & (step >= lo) & (step <= hi), step, (lo + hi) / 2)
-        new = np.where(g == 0, t, new)
+        # Stop on a root only if it is a foot (a minimum of the distance, g' > 0): at a piece
+        # cut where S' = 0 exactly, g = 0 too but the distance is largest there.
+        new = np.where((g == 0) & ok, t, new)
         moved = float(np.max(np.abs(new - t)))
         t = new
         if moved <= 4 * EPS:
@@ -992,16 +1021,25 @@ def _tiling_violations(
 
 
 def _joint_smooth(
-    sources: Sequence[SourceCurve], a: Mapping[str, Any], b: Mapping[str, Any]
+    sources: Sequence[SourceCurve],
+    a: Mapping[str, Any],
+    b: Mapping[str, Any],
+    *,
+    seam: bool = False,
 ) -> tuple[bool, str]:
     """Whether the source is smooth where output ``a`` ends and ``b`` starts: inside one
-    source segment (unless at a cusp), or between two whose tangents agree to 1e-9 rad."""
+    source segment (unless at a cusp), or between two whose tangents agree to 1e-9 rad.
+
+    At the ``seam`` of a closed subpath (``a`` the last output, ``b`` the first) the source
+    passes from the end of ``a``'s source segment to the start of ``b``'s, even when both are
+    the same segment (a subpath of one segment): its end tangent against its start tangent."""
     ja, jb = a["source_segment"], b["source_segment"]
-    if ja == jb:
+    if ja == jb and not seam:
         u = float(a["u_end"])
         return sources[ja].smooth_at(u), f"inside source segment {ja} at u={u!r}"
     angle = _angle_between(sources[ja].tangent(1.0), sources[jb].tangent(0.0))
-    return bool(angle <= ANGLE_TOL_RAD), f"between source segments {ja} and {jb}"
+    where = "at the seam, " if seam else ""
+    return bool(angle <= ANGLE_TOL_RAD), f"{where}between source segments {ja} and {jb}"
 
 
 def _subpath_violations(
@@ -1089,7 +1127,7 @@ def _subpath_violations(
                     f"{head}: {name} {a}/{b}: gap {gap:.3g} between output {a}'s end and "
                     f"output {b}'s start (allowed {rounding:.3g})"
                 )
-        smooth, what = _joint_smooth(sources, outs[a], outs[b])
+        smooth, what = _joint_smooth(sources, outs[a], outs[b], seam=b == 0)
         if not smooth:
             continue
         angle = _angle_between(t_end[a], t_start[b])

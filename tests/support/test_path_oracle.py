@@ -489,3 +489,70 @@ def test_catches_bad_tiling_and_inconsistent_arcs() -> None:
     sq_path, sq_outs = square()
     missing = po.check_path(sq_path, [sq_outs[:2] + sq_outs[3:]], TOL)
     assert any("source segment 2 has no output" in v for v in missing.violations)
+
+
+# -- regressions -----------------------------------------------------------------------
+
+
+def _turning_points(cp: list[tuple[float, float]]) -> list[float]:
+    """The parameters in (0, 1) where a cubic on the x axis turns back: roots of x'(t)."""
+    x = [p[0] for p in cp]
+    # x'(t)/3 = (x1 − x0)(1 − t)² + 2(x2 − x1)t(1 − t) + (x3 − x2)t², in the power basis.
+    a, b, c = x[1] - x[0], x[2] - x[1], x[3] - x[2]
+    roots = np.roots([a - 2 * b + c, 2 * (b - a), a])
+    return sorted(float(r.real) for r in roots if abs(r.imag) < 1e-15 and 0 < r.real < 1)
+
+
+def _lines_along(cubic: Cubic, cuts: list[float]) -> list[dict[str, Any]]:
+    """The exact output of a straight cubic: one line per piece between ``cuts``."""
+    src = po.SourceCurve.of(cubic)
+    ts = [0.0, *cuts, 1.0]
+    ends = [cubic.start, *(tuple(src.point(t).astype(float)) for t in cuts), cubic.end]
+    return [line_out(ends[i], ends[i + 1], u=(ts[i], ts[i + 1])) for i in range(len(ts) - 1)]
+
+
+def test_a_line_that_doubles_back_is_its_own_set() -> None:
+    # x(t) runs 0 → 3.618 → 1.382 → 5: the grid crowds at the turning points, where the
+    # nearest samples of a point just past the first one (x = 3.643) all lie on that turn,
+    # 0.025 away, while the true foot (distance 0) lies on the last branch.
+    cp = [(0.0, 0.0), (10.0, 0.0), (-5.0, 0.0), (5.0, 0.0)]
+    cubic = Cubic(*(pt(*p) for p in cp))
+    src = po.SourceCurve.of(cubic)
+    xs = np.linspace(0.0, 5.0, 2001)
+    d, _ = po.foot_distance(src, np.stack([xs, np.zeros_like(xs)], axis=-1))
+    assert float(np.max(d)) < 1e-14
+    outs = _lines_along(cubic, _turning_points(cp))
+    verdict = po.check_path(Path((Subpath((cubic,)),)), [outs], TOL)
+    assert verdict.ok, verdict.describe()
+    assert verdict.subpath_union[0] < 1e-14
+
+
+def test_the_seam_of_a_one_segment_subpath_compares_its_end_with_its_start() -> None:
+    # A loop closed by one cubic: it leaves along +x and returns along (1, −1) — a corner at
+    # the seam, though both sides of it are source segment 0.
+    loop = Cubic(pt(100, 100), pt(150, 100), pt(50, 150), pt(100, 100))
+    outs = biarcs(loop, 6)
+    tol = 1.01 * max(o["max_deviation"] for o in outs)
+    verdict = po.check_path(Path((Subpath((loop,), closed=True),)), [outs], tol)
+    assert verdict.ok, verdict.describe()
+
+    # A closed straight cubic x(t) = 3t(1 − t)(1 − 2t) leaves and returns along +x: smooth at
+    # the seam, so a kink there is reported even though both sides are source segment 0.
+    cp = [(0.0, 0.0), (1.0, 0.0), (-1.0, 0.0), (0.0, 0.0)]
+    line = Cubic(*(pt(*p) for p in cp))
+    path = Path((Subpath((line,), closed=True),))
+    outs = _lines_along(line, _turning_points(cp))
+    verdict = po.check_path(path, [outs], TOL)
+    assert verdict.ok, verdict.describe()
+    kinked = copy.deepcopy(outs)
+    tip = [0.5 * kinked[-1]["start"][0], 1e-5]
+    last = kinked.pop()
+    u_mid = 0.5 * (last["u_start"] + last["u_end"])
+    kinked += [
+        line_out(last["start"], tip, u=(last["u_start"], u_mid), deviation=1e-5),
+        line_out(tip, last["end"], u=(u_mid, 1.0), deviation=1e-5),
+    ]
+    verdict = po.check_path(path, [kinked], TOL)
+    assert any(
+        "seam 3/0: output tangents" in v and "at the seam" in v for v in verdict.violations
+    ), verdict.describe()

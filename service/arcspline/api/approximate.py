@@ -102,10 +102,12 @@ async def approximate_batch(body: BatchRequest, request: Request) -> RawJSONResp
             entries[i] = (
                 result if isinstance(result, Encoded) else job_problem(result, ["body", "jobs", i])
             )
-    return RawJSONResponse(_batch_body(entries, runtime))
+    return RawJSONResponse(batch_body(entries, runtime, "batch"))
 
 
-def _batch_body(entries: list[Encoded | dict[str, Any] | None], runtime: Runtime) -> bytes:
+def batch_body(
+    entries: list[Encoded | dict[str, Any] | None], runtime: Runtime, endpoint: str
+) -> bytes:
     """``{"results": [...]}`` from the workers' bytes, joined once (never re-parsed)."""
     metrics = runtime.metrics
     parts: list[bytes] = [b'{"results":[']
@@ -119,8 +121,8 @@ def _batch_body(entries: list[Encoded | dict[str, Any] | None], runtime: Runtime
             arcs, lines, ok = arcs + entry.arc_count, lines + entry.line_count, ok + 1
         else:
             parts += (b'{"status":"error","error":', orjson.dumps(entry), b"}")
-            metrics.job_error("batch")
+            metrics.job_error(endpoint)
             metrics.error(problem_kind(entry))
     parts.append(b"]}")
-    metrics.job_ok("batch", arcs, lines, ok)
+    metrics.job_ok(endpoint, arcs, lines, ok)
     return b"".join(parts)

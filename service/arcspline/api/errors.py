@@ -38,7 +38,7 @@ KINDS: dict[str, tuple[int, str]] = {
     "body_too_large": (413, "Request body too large"),
     "too_many_jobs": (413, "Too many jobs"),
     "validation": (422, "Invalid request"),
-    "invalid_input": (422, "Invalid spiral"),
+    "invalid_input": (422, "Invalid curve"),
     "tolerance_floor": (422, "Tolerance below what can be reached"),
     "segment_limit": (422, "Too many segments"),
     "precision": (422, "Beyond double precision"),
@@ -153,6 +153,9 @@ _CORE_FIELD = re.compile(r"(?P<name>[A-Za-z_]\w*)(?:\[(?P<index>\d+)\])?")
 
 def core_field_loc(field: str) -> Loc:
     """The request path of a core parameter: ``control_points[2]`` → spiral.control_points.2."""
+    if field.startswith("path"):
+        # path.subpaths[0].segments[3] → path.subpaths.0.segments.3
+        return [int(part) if part.isdigit() else part for part in re.findall(r"\w+", field)]
     match = _CORE_FIELD.fullmatch(field)
     if match is None:
         return [field]

@@ -3,6 +3,8 @@ in a worker."""
 
 from __future__ import annotations
 
+from typing import Any
+
 from fastapi import APIRouter, Request
 from starlette.responses import Response
 
@@ -22,15 +24,20 @@ class SVGResponse(Response):
     media_type = MEDIA_TYPE
 
 
+def svg_responses() -> dict[int | str, dict[str, Any]]:
+    """The picture, or a problem."""
+    return {
+        200: {"description": "The picture", "content": {MEDIA_TYPE: {}}},
+        **problem_responses(400, 413, 422, 503, 504),
+    }
+
+
 @router.post(
     "/v1/preview",
     name="preview",
     summary="Draw an approximation (SVG)",
     response_class=SVGResponse,
-    responses={
-        200: {"description": "The picture", "content": {MEDIA_TYPE: {}}},
-        **problem_responses(400, 413, 422, 503, 504),
-    },
+    responses=svg_responses(),
 )
 async def preview(body: ApproximateRequest, request: Request) -> SVGResponse:
     """The spiral, its arcs with their centres, the deviation magnified (``gcode`` ignored)."""

@@ -15,7 +15,8 @@ arc's ends (not on the opposite side of ``C``), the piece and the arc are polar 
 Both conditions are checked exactly: the angle is monotone iff ``w(u) = κ·(Q − J)×Q' + T·Q'
 > 0`` on the piece — with ``Q = (X, Y)/W``, ``W³·w = κ·(X − J·W)×D + W·(T·D)``, ``D = X'W −
 XW'``, a polynomial proven positive by its Bernstein coefficients or, failing that, by its
-minimum (at an end or a root of its derivative, ``maths/poly.pxd``); the sides are signs of ``(κ(Q(s) − J) − N)·(κ(E − J) − N)``.
+minimum (at an end or a root of its derivative, ``maths/poly.pxd``); the sides are signs
+of ``(κ(Q(s) − J) − N)·(κ(E − J) − N)``.
 An arc failing either is refused (``inf``).
 
 **The maximum, exactly.** ``e(u) = |κ‖P‖² − 2P·N| / (‖κP − N‖ + 1)`` (``P = Q(u) − J``, no
@@ -31,11 +32,9 @@ from libc.math cimport INFINITY, NAN, cos, fabs, isfinite, sin, sqrt
 from arcspline.geometry.curves.piece cimport (
     Piece,
     direction,
-    numerator,
     point,
     spiral_piece,
     tangent_numerators,
-    weight,
 )
 from arcspline.geometry.maths.poly cimport (
     MAX_COEFFS,

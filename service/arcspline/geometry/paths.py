@@ -112,7 +112,9 @@ class SubpathCurve:
         last = np.minimum(last, len(self._frames) - 1)
         counts = last - first + 1
         query = np.repeat(np.arange(len(first)), counts)
-        piece = first[query] + (np.arange(len(query)) - np.repeat(np.cumsum(counts) - counts, counts))
+        piece = first[query] + (
+            np.arange(len(query)) - np.repeat(np.cumsum(counts) - counts, counts)
+        )
         lo = np.clip(np.asarray(u0)[query] - piece, 0.0, 1.0)
         hi = np.clip(np.asarray(u1)[query] - piece, 0.0, 1.0)
         return query, piece, lo, hi
@@ -236,9 +238,7 @@ def _check(segment: Segment, where: str) -> None:
     if not all(math.isfinite(v) and abs(v) < MAX_MAGNITUDE for v in values):
         raise GeometryError(where, f"has a number that is not finite or beyond ±{MAX_MAGNITUDE:g}")
     if isinstance(segment, CircularArc | EllipticalArc):
-        radii = (
-            (segment.radius,) if isinstance(segment, CircularArc) else (segment.rx, segment.ry)
-        )
+        radii = (segment.radius,) if isinstance(segment, CircularArc) else (segment.rx, segment.ry)
         if not all(r > 0.0 for r in radii):
             raise GeometryError(where, "an arc's radii must be > 0")
         if not 0.0 < abs(segment.sweep_rad) < 2.0 * math.pi:
@@ -420,6 +420,14 @@ def _refusal(
             f"this path (reached at {where}); raise the tolerance or split the path",
             kind="segment_limit",
             limit=float(limits.max_segments),
+        )
+    if why == "stuck":
+        return GeometryError(
+            where,
+            "turns too sharply (a near-cusp, or nearly straight control points that double "
+            f"back) for double precision to follow within {tolerance:.6g}; make the cusp exact "
+            "(coincident control points) or smooth it",
+            kind="precision",
         )
     return GeometryError(
         "tolerance",

@@ -2,8 +2,9 @@
 
 A writer is a module with a ``WRITER`` (:class:`Writer`) and one line in :data:`WRITERS`:
 ``gcode`` (an RS-274 program, ``gcode/``) and ``svg`` (a picture of the approximation,
-``svg.py``). Writers are pure: the curve, its arc spline and the writer's options in, text
-out (a spiral is one part; a path has one part per subpath); what they refuse they raise as their own error (:class:`~.gcode.GcodeError`) or a
+``svg.py``). Writers are pure: parts (arc splines and the curves they approximate: a spiral
+is one part, a path one per subpath) and the writer's options in, text out; what they refuse
+they raise as their own error (:class:`~.gcode.GcodeError`) or a
 :class:`~arcspline.geometry.GeometryError`.
 """
 

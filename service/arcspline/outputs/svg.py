@@ -46,11 +46,11 @@ def nice_number(x: float) -> float:
     return step * 10.0**exponent
 
 
-def _segment_samples(spline: ArcSpline) -> tuple[FloatArray, npt.NDArray[np.intp]]:
-    """Parameters ``u`` sampled within every segment, and each sample's segment index."""
+def _segment_samples(spline: ArcSpline, per: int) -> tuple[FloatArray, npt.NDArray[np.intp]]:
+    """Parameters ``u`` sampled within every segment (``per`` each), and each sample's
+    segment index."""
     c = spline.columns
     n = len(c)
-    per = max(8, DEVIATION_SAMPLES // max(n, 1))
     t = np.linspace(0.0, 1.0, per)
     u = c.u_start[:, None] + (c.u_end - c.u_start)[:, None] * t[None, :]
     index = np.repeat(np.arange(n), per).reshape(n, per)
@@ -58,11 +58,11 @@ def _segment_samples(spline: ArcSpline) -> tuple[FloatArray, npt.NDArray[np.intp
 
 
 def _deviation_curves(
-    curve: Curve, spline: ArcSpline, magnify: float
+    curve: Curve, spline: ArcSpline, magnify: float, per: int
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """Per segment (rows): the magnified deviation curve and both band edges, ``(n, k, 2)``."""
+    """Per segment (rows): the magnified deviation curve and both band edges, ``(n, per, 2)``."""
     c = spline.columns
-    u, index = _segment_samples(spline)
+    u, index = _segment_samples(spline, per)
     q = curve.eval(u)
     # Lines: project onto the chord, normal to its left.
     chord = c.end - c.start
@@ -126,7 +126,9 @@ def layout(parts: Sequence[Part]) -> Layout:
     c = spline.columns
     with np.errstate(all="ignore"):
         paths = [
-            curve.eval(np.linspace(*curve.domain, 400 + 16 * int(curve.domain[1] - curve.domain[0])))
+            curve.eval(
+                np.linspace(*curve.domain, 400 + 16 * int(curve.domain[1] - curve.domain[0]))
+            )
             for _, curve in parts
         ]
         every = np.concatenate(paths)
@@ -151,7 +153,8 @@ def layout(parts: Sequence[Part]) -> Layout:
             y = (y1 - points[..., 1]) * scale + HEADER_PX
             return np.stack([x, y], axis=-1)
 
-        curves = [_deviation_curves(curve, part, magnify) for part, curve in parts]
+        per = max(8, DEVIATION_SAMPLES // max(len(c), 1))
+        curves = [_deviation_curves(curve, part, magnify, per) for part, curve in parts]
         deviation, band_out, band_in = (np.concatenate(a) for a in zip(*curves, strict=True))
         result = Layout(
             width_px=WIDTH_PX,

@@ -355,8 +355,8 @@ class _Parser:
         else:  # "A"
             end = self.point(a[5], a[6], relative, pos)
             try:
-                arc = _arc(cur, end, a[0], a[1], a[2], a[3] == 1.0, a[4] == 1.0)
-            except _UncomputableArcError:
+                arc = arc_from_endpoints(cur, end, a[0], a[1], a[2], a[3] == 1.0, a[4] == 1.0)
+            except UncomputableArcError:
                 self.fail(
                     pos,
                     "the arc cannot be computed in floating point "
@@ -370,7 +370,7 @@ class _Parser:
 # -- arcs: endpoint form to centre form (SVG implementation notes F.6.5, F.6.6) -------------
 
 
-class _UncomputableArcError(Exception):
+class UncomputableArcError(Exception):
     """An arc that floating point cannot represent (radii or coordinates too extreme)."""
 
 
@@ -393,11 +393,11 @@ def _cos_sin_deg(deg: float) -> tuple[float, float]:
     return math.cos(rad), math.sin(rad)
 
 
-def _arc(
+def arc_from_endpoints(
     p0: Point, p1: Point, rx: float, ry: float, rotation_deg: float, large: bool, sweep: bool
 ) -> Segment | None:
     """The arc of SVG's ``A`` from ``p0`` to ``p1``; None when it is omitted (equal end
-    points). Raises :class:`_UncomputableArcError` when floating point cannot represent it."""
+    points). Raises :class:`UncomputableArcError` when floating point cannot represent it."""
     if p0 == p1:
         return None
     rx, ry = abs(rx), abs(ry)
@@ -411,13 +411,13 @@ def _arc(
     x1 = cos_r * hx + sin_r * hy
     y1 = -sin_r * hx + cos_r * hy
     if x1 == 0.0 and y1 == 0.0:
-        raise _UncomputableArcError  # distinct end points, but closer than the rotation resolves
+        raise UncomputableArcError  # distinct end points, but closer than the rotation resolves
     # e: the unit direction of (x1 / rx, y1 / ry), scaled so that nothing under/overflows.
     m, big = max(abs(x1), abs(y1)), max(rx, ry)
     ex, ey = (x1 / m) * (ry / big), (y1 / m) * (rx / big)
     norm = math.hypot(ex, ey)
     if norm == 0.0:
-        raise _UncomputableArcError
+        raise UncomputableArcError
     ex, ey = ex / norm, ey / norm
     # lam = sqrt(Λ) of F.6.6: > 1 when the radii are too small for the chord.
     lam = math.hypot(x1 / rx, y1 / ry)
@@ -447,7 +447,7 @@ def _arc(
         sin_r * cxp + cos_r * cyp + _half_sum(p0.y, p1.y),
     )
     if not all(map(math.isfinite, (center.x, center.y, rx, ry, start_angle))):
-        raise _UncomputableArcError
+        raise UncomputableArcError
     if circle:
         return CircularArc(p0, p1, center, rx, start_angle, sweep_rad)
     if rx == ry:  # scaled up into a circle: the polar angle of p0 about the centre

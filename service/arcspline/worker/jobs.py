@@ -25,12 +25,15 @@ from arcspline.geometry import (
     CurveSpec,
     GeometryError,
     Limits,
+    SplineStats,
     StrategyName,
     approximate,
     approximate_many,
 )
-from arcspline.outputs import WRITERS
+from arcspline.geometry.paths import PathSpline, SubpathSpline, approximate_path
+from arcspline.outputs import WRITERS, Part
 from arcspline.outputs.gcode import GcodeError
+from arcspline.paths import PathSpec
 
 #: An output asked for: a writer's name (``arcspline.outputs.WRITERS``) and its options.
 Output = tuple[str, Any]
@@ -45,6 +48,16 @@ class Job(NamedTuple):
     the process boundary per second, and tuples pickle several times faster.)"""
 
     curve: CurveSpec
+    tolerance: float
+    strategy: StrategyName = "subdivide"
+    outputs: tuple[Output, ...] = ()
+
+
+class PathJob(NamedTuple):
+    """One path to approximate: its spec (SVG data or the JSON form, built in the worker), a
+    tolerance, a strategy and the outputs asked for (one document for the whole path)."""
+
+    path: PathSpec
     tolerance: float
     strategy: StrategyName = "subdivide"
     outputs: tuple[Output, ...] = ()
@@ -80,15 +93,9 @@ _ANGLE, _SWEEP, _LENGTH, _U0, _U1, _DEV, _U_DEV = (
 )  # fmt: skip
 
 
-def encode(spline: ArcSpline, outputs: dict[str, str]) -> Encoded | GeometryError:
-    """The ``ApproximateResponse`` body of ``spline`` and its written ``outputs`` as JSON
-    bytes (an error if a number is not finite).
-
-    Built from the spline's rows as plain values (``ArcSpline.values``: one conversion for
-    the table) and serialised by orjson: no per-segment model objects, which a 1000-spiral
-    batch would otherwise spend most of its time building.
-    """
-    segments = [
+def _segments(rows: list[list[float]]) -> list[dict[str, Any]]:
+    """The response's segment objects of table rows (``u_*`` as the rows hold them)."""
+    return [
         {
             "type": "arc",
             "start": [r[_SX], r[_SY]],
@@ -115,33 +122,99 @@ def encode(spline: ArcSpline, outputs: dict[str, str]) -> Encoded | GeometryErro
             "max_deviation": r[_DEV],
             "u_at_max_deviation": r[_U_DEV],
         }
-        for r in spline.values()
+        for r in rows
     ]
-    s = spline.stats
-    stats = {
+
+
+def _stats(s: SplineStats, tolerance: float, strategy: str) -> dict[str, Any]:
+    return {
         "arc_count": s.arc_count,
         "line_count": s.line_count,
         "segment_count": s.segment_count,
         "max_deviation": s.max_deviation,
-        "u_at_max_deviation": s.u_at_max_deviation,
         "deviation_ratio": s.deviation_ratio,
         "mean_segment_deviation": s.mean_segment_deviation,
-        "spiral_length": s.spiral_length,
         "spline_length": s.spline_length,
         "min_radius": s.min_radius,
         "max_radius": s.max_radius,
-        "tolerance": spline.tolerance,
-        "strategy": spline.strategy,
+        "tolerance": tolerance,
+        "strategy": strategy,
     }
-    head = orjson.dumps({"segments": segments, "stats": stats})
+
+
+def _finite_body(
+    head: bytes, nulls: int, outputs: dict[str, str], arcs: int, lines: int
+) -> Encoded | GeometryError:
     # orjson writes NaN and Infinity as null, and no number of the segments and statistics
     # may be null but the radii of a spline without arcs: counting nulls proves every number
     # finite at memchr speed, without another pass over the rows.
-    if head.count(b"null") != (2 if s.arc_count == 0 else 0):
+    if head.count(b"null") != nulls:
         return _NOT_FINITE
     texts = orjson.dumps({name: outputs.get(name) for name in JSON_OUTPUTS})
     body = b"".join((head[:-1], b",", texts[1:]))
-    return Encoded(body=body, arc_count=s.arc_count, line_count=s.line_count)
+    return Encoded(body=body, arc_count=arcs, line_count=lines)
+
+
+def encode(spline: ArcSpline, outputs: dict[str, str]) -> Encoded | GeometryError:
+    """The ``ApproximateResponse`` body of ``spline`` and its written ``outputs`` as JSON
+    bytes (an error if a number is not finite).
+
+    Built from the spline's rows as plain values (``ArcSpline.values``: one conversion for
+    the table) and serialised by orjson: no per-segment model objects, which a 1000-spiral
+    batch would otherwise spend most of its time building.
+    """
+    s = spline.stats
+    stats = _stats(s, spline.tolerance, spline.strategy)
+    stats["u_at_max_deviation"] = s.u_at_max_deviation
+    stats["spiral_length"] = s.spiral_length
+    head = orjson.dumps({"segments": _segments(spline.values()), "stats": stats})
+    return _finite_body(head, 2 if s.arc_count == 0 else 0, outputs, s.arc_count, s.line_count)
+
+
+def path_segments(sub: SubpathSpline) -> list[dict[str, Any]]:
+    """A subpath's segment objects: ``u_*`` are the source segment's own parameter ``t``,
+    and ``source_segment`` its index in the subpath."""
+    rows = sub.spline.values()
+    src = sub.sources()
+    for r, j, t0, t1, tm in zip(
+        rows, src.segment.tolist(), src.t_start.tolist(), src.t_end.tolist(),
+        src.t_at_max_deviation.tolist(), strict=True,
+    ):  # fmt: skip
+        r[_U0], r[_U1], r[_U_DEV] = t0, t1, tm
+        r.append(float(j))
+    segments = _segments(rows)
+    for seg, r in zip(segments, rows, strict=True):
+        seg["source_segment"] = int(r[-1])
+    return segments
+
+
+def encode_path(result: PathSpline, outputs: dict[str, str]) -> Encoded | GeometryError:
+    """The ``PathResponse`` body: per subpath its segments and statistics, the statistics of
+    the whole path, and the written ``outputs``."""
+    subpaths = []
+    nulls = 0
+    worst = (0, 0, 0.0, -1.0)
+    for i, sub in enumerate(result.subpaths):
+        s = sub.spline.stats
+        segments = path_segments(sub)
+        stats = _stats(s, result.tolerance, result.strategy)
+        k = max(range(len(segments)), key=lambda n: segments[n]["max_deviation"])
+        at = (segments[k]["source_segment"], segments[k]["u_at_max_deviation"])
+        stats["max_deviation_segment"], stats["t_at_max_deviation"] = at
+        stats["curve_length"] = s.spiral_length
+        if s.max_deviation > worst[3]:
+            worst = (i, at[0], at[1], s.max_deviation)
+        nulls += 2 if s.arc_count == 0 else 0
+        subpaths.append({"closed": sub.closed, "segments": segments, "stats": stats})
+    s = result.stats
+    overall = _stats(s, result.tolerance, result.strategy)
+    overall["max_deviation_subpath"], overall["max_deviation_segment"] = worst[0], worst[1]
+    overall["t_at_max_deviation"] = worst[2]
+    overall["curve_length"] = s.spiral_length
+    overall["subpath_count"] = len(subpaths)
+    nulls += 2 if s.arc_count == 0 else 0
+    head = orjson.dumps({"subpaths": subpaths, "stats": overall})
+    return _finite_body(head, nulls, outputs, s.arc_count, s.line_count)
 
 
 #: A result with a NaN or an infinity: JSON cannot carry it, and no response may hold one.
@@ -153,17 +226,17 @@ _NOT_FINITE = GeometryError(
 )
 
 
-def _write(job: Job, curve: Curve, spline: ArcSpline) -> dict[str, str] | GcodeError:
-    """Every output the job asks for, by writer name, or the first writer's refusal."""
+def _write(outputs: tuple[Output, ...], parts: list[Part]) -> dict[str, str] | GcodeError:
+    """Every output asked for, by writer name, or the first writer's refusal."""
     try:
-        return {name: WRITERS[name].write([(spline, curve)], options) for name, options in job.outputs}
+        return {name: WRITERS[name].write(parts, options) for name, options in outputs}
     except GcodeError as error:
         return error
 
 
 def _finish(job: Job, curve: Curve, spline: ArcSpline) -> JobResult:
     """Write the outputs asked for, and encode."""
-    outputs = _write(job, curve, spline)
+    outputs = _write(job.outputs, [(spline, curve)])
     return outputs if isinstance(outputs, GcodeError) else encode(spline, outputs)
 
 
@@ -203,14 +276,38 @@ def approximate_chunk(jobs: Sequence[Job], limits: Limits) -> list[JobResult]:
     return done
 
 
-def render(job: Job, limits: Limits) -> Document | GeometryError | GcodeError:
+def _parts(job: Job | PathJob, limits: Limits) -> tuple[list[Part], PathSpline | None]:
+    """The job's approximation as writer parts (and, for a path, its whole result)."""
+    if isinstance(job, PathJob):
+        result = approximate_path(job.path.build(), job.tolerance, job.strategy, limits)
+        return [(s.spline, s.curve) for s in result.subpaths], result
+    curve = job.curve.build()
+    return [(approximate(curve, job.tolerance, job.strategy, limits), curve)], None
+
+
+def approximate_path_one(job: PathJob, limits: Limits) -> JobResult:
+    """One path: the encoded ``PathResponse``, or the error that names the offending field."""
+    try:
+        parts, result = _parts(job, limits)
+    except GeometryError as error:
+        return error
+    assert result is not None
+    outputs = _write(job.outputs, parts)
+    return outputs if isinstance(outputs, GcodeError) else encode_path(result, outputs)
+
+
+def approximate_path_chunk(jobs: Sequence[PathJob], limits: Limits) -> list[JobResult]:
+    """Many paths in one task, in order (each alone: a path is already one compiled loop)."""
+    return [approximate_path_one(job, limits) for job in jobs]
+
+
+def render(job: Job | PathJob, limits: Limits) -> Document | GeometryError | GcodeError:
     """The job's first output as a document of its own (no JSON around it)."""
     try:
-        curve = job.curve.build()
-        spline = approximate(curve, job.tolerance, job.strategy, limits)
+        parts, _ = _parts(job, limits)
         (name, options), *_ = job.outputs
         writer = WRITERS[name]
-        text = writer.write([(spline, curve)], options)
+        text = writer.write(parts, options)
     except (GeometryError, GcodeError) as error:
         return error
     return Document(body=text.encode(), media_type=writer.media_type)

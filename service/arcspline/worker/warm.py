@@ -13,16 +13,21 @@ from __future__ import annotations
 
 from arcspline.geometry import DEFAULT_LIMITS, STRATEGIES, SpiralFromParameters
 from arcspline.outputs.gcode import GcodeOptions
+from arcspline.paths import PathFromData
 
-from .jobs import Job, approximate_chunk, approximate_one, render
+from .jobs import Job, PathJob, approximate_chunk, approximate_one, approximate_path_one, render
 
 #: The paper's example (Walton & Meek 1996, Table 1).
 _SPIRAL = SpiralFromParameters((1.5, 3.0), (1.0, 0.0), 51.34, 0.41574)
+#: A path with every kind of segment and two subpaths.
+_PATH = PathFromData(
+    "M 0 0 C 10 0 20 10 30 30 L 40 30 A 5 5 0 0 1 50 30 A 8 4 30 0 1 60 20 Z m 5 5 q 5 5 10 0"
+)
 
 
 def warm() -> None:
     """Run a job of each kind: every strategy, alone and in a chunk, with a G-code program,
-    a refused one, and the preview's picture."""
+    a refused one, the preview's picture, and a path of each strategy and its picture."""
     jobs = [
         *(Job(_SPIRAL, 1e-3, strategy) for strategy in STRATEGIES),
         Job(_SPIRAL, 1e-3, outputs=(("gcode", GcodeOptions(feed_rate=1000.0)),)),
@@ -32,6 +37,10 @@ def warm() -> None:
         approximate_one(job, DEFAULT_LIMITS)
     approximate_chunk(jobs, DEFAULT_LIMITS)
     render(Job(_SPIRAL, 1e-3, outputs=(("svg", None),)), DEFAULT_LIMITS)
+    gcode = (("gcode", GcodeOptions(feed_rate=1000.0)),)
+    for strategy in STRATEGIES:
+        approximate_path_one(PathJob(_PATH, 1e-2, strategy, gcode), DEFAULT_LIMITS)
+    render(PathJob(_PATH, 1e-2, outputs=(("svg", None),)), DEFAULT_LIMITS)
 
 
 warm()

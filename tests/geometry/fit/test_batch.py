@@ -43,7 +43,7 @@ def test_a_spirals_frame_holds_what_the_kernels_read() -> None:
     theta = spiral.turn_angle_rad
     canonical = (3.0, 0.0, 1.2 * math.cos(theta) ** 2 - 1.0, 0.0, 0.0, 0.0)
     coefficients = tuple(frame[f] for f in ("x1", "x2", "x3", "y1", "y2"))
-    assert coefficients + (frame["w1"],) == canonical
+    assert (*coefficients, frame["w1"]) == canonical
     assert frame["y3"] == pytest.approx(1.2 * math.cos(theta) * math.sin(theta), rel=1e-15)
     assert frame["w2"] == 0.0
     assert (frame["end_x"], frame["end_y"]) == spiral.end_point

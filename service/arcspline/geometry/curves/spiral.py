@@ -27,6 +27,7 @@ from typing import NamedTuple
 import numpy as np
 
 from ..errors import GeometryError
+from ..fit.batch import PIECE_KINDS
 from ..spline import FloatArray, Point
 from . import bezier
 from .piece import spiral_length
@@ -243,7 +244,8 @@ class Spiral:
         c, s = math.cos(self.turn_angle_rad), math.sin(self.turn_angle_rad)
         return (
             x0, y0, tx, ty, self.a, float(self.turn_direction), x3, y3, self.chord,
-            self.coordinate_scale, 3.0, 0.0, 1.2 * c * c - 1.0, 0.0, 0.0, 1.2 * c * s, 0.0, 0.0, 0.0,
+            self.coordinate_scale, 3.0, 0.0, 1.2 * c * c - 1.0, 0.0, 0.0, 1.2 * c * s,
+            0.0, 0.0, float(PIECE_KINDS["fit"]),
         )  # fmt: skip
 
     # -- evaluation (Bernstein form) ---------------------------------------------------

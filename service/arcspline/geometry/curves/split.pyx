@@ -15,6 +15,7 @@ The cuts serve the fitting, not the guarantee: every arc's deviation is certifie
 whatever the piece (``deviation.pyx``).
 """
 
+from libc.float cimport DBL_EPSILON
 from libc.math cimport M_PI, atan2, ceil, cos, fabs, hypot, sin, tan
 from libcpp.vector cimport vector
 
@@ -102,9 +103,11 @@ cdef inline Vec bezier_derivative(const Bezier* b, double t) noexcept nogil:
 
 cdef inline Vec bezier_direction(const Bezier* b, double t, double side) noexcept nogil:
     """The tangent direction at ``t`` seen from the side ``side`` (+1 after, −1 before):
-    ``B'``, or where it vanishes ``±B''``, or ``B'''``."""
+    ``B'``, or where it vanishes (to rounding) ``±B''``, or ``B'''``."""
     cdef Vec d = bezier_derivative(b, t)
-    if d.x != 0.0 or d.y != 0.0:
+    # Zero to rounding (a cusp or turning point): its sign is noise.
+    cdef double noise = 64.0 * DBL_EPSILON * (norm(b.c1) + 2.0 * norm(b.c2) + 3.0 * norm(b.c3))
+    if norm(d) > noise:
         return d
     d = vec(side * (2.0 * b.c2.x + 6.0 * t * b.c3.x), side * (2.0 * b.c2.y + 6.0 * t * b.c3.y))
     if d.x != 0.0 or d.y != 0.0:
@@ -119,7 +122,9 @@ cdef inline double turn_between(const Bezier* b, double ta, double tb) noexcept 
     cdef double total = 0.0
     cdef int i
     for i in range(1, TURN_SAMPLES + 1):
-        d = bezier_direction(b, ta + (tb - ta) * i / TURN_SAMPLES, -1.0 if i == TURN_SAMPLES else 1.0)
+        d = bezier_direction(
+            b, ta + (tb - ta) * i / TURN_SAMPLES, -1.0 if i == TURN_SAMPLES else 1.0
+        )
         total += atan2(cross(prev, d), dot(prev, d))
         prev = d
     return total
@@ -219,7 +224,8 @@ cdef int turn_cuts(const Bezier* b, double ta, double tb, double* cuts) noexcept
         n = roots_in(c, 2, last, tb, found)
         for k in range(n):
             at = bezier_derivative(b, found[k])
-            if dot(at, dj) > 0.0 and found[k] - last > CUT_SEPARATION and tb - found[k] > CUT_SEPARATION:
+            if (dot(at, dj) > 0.0 and found[k] - last > CUT_SEPARATION
+                    and tb - found[k] > CUT_SEPARATION):
                 cuts[count] = found[k]
                 last = found[k]
                 count += 1
@@ -273,12 +279,15 @@ cdef void bezier_pieces(
     n += 1
     cdef Vec start = b.p0, end, a1, a2, a3, d1, d2
     cdef double ta, tb, h, turn, mirror
+    cdef double noise = 64.0 * DBL_EPSILON * span_d
     cdef Row row
     for i in range(n - 1):
         ta, tb = ts[i], ts[i + 1]
         end = bezier_point(b, tb)
         h = tb - ta
         d1 = bezier_derivative(b, ta)
+        if norm(d1) <= noise:
+            d1 = vec(0.0, 0.0)  # cut at a cusp or turning point: the speed there is 0
         a1 = vec(h * d1.x, h * d1.y)
         d2 = vec(b.c2.x + 3.0 * ta * b.c3.x, b.c2.y + 3.0 * ta * b.c3.y)
         a2 = vec(h * h * d2.x, h * h * d2.y)

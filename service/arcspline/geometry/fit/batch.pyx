@@ -6,16 +6,17 @@ frame, map its arcs to world coordinates, measure what rounding did, and gather 
 Input, one row per piece (a spiral, or a piece of a path's segment): the frame table
 (``FRAME_FIELDS``: the similarity that maps the local frame onto the world, the piece's stored
 end point, what the tolerance floor needs, and the piece's coefficients in its local frame,
-``curves/piece.pxd``) and the tolerances. Output of :func:`run`: ``(blocks, where, stats, status, aux)`` — the segments of
-every spiral, one row each (``FIELDS``), in a few tables (``blocks``), spiral ``i`` owning rows
-``where[i, 1]:where[i, 2]`` of ``blocks[where[i, 0]]``;
-per spiral its statistics (``STATS_FIELDS``), its ``Status`` (``STATUS``) and, for a failure,
-two numbers for its message (``UNPLACEABLE``: the worst rounding error and the largest
-radius). A spiral's rows depend on that spiral alone, whatever else is in the batch.
+``curves/piece.pxd``) and the tolerances. Output of :func:`run`: ``(blocks, where, stats,
+status, aux)`` — the segments of every piece, one row each (``FIELDS``), in a few tables
+(``blocks``), piece ``i`` owning rows ``where[i, 1]:where[i, 2]`` of
+``blocks[where[i, 0]]``; per piece its statistics (``STATS_FIELDS``), its ``Status``
+(``STATUS``) and, for a failure, two numbers for its message (``UNPLACEABLE``: the worst
+rounding error and the largest radius). A piece's rows depend on that piece alone, whatever
+else is in the batch (but for a shared segment budget).
 """
 
 from libc.float cimport DBL_EPSILON as EPS
-from libc.math cimport INFINITY, NAN, atan2, fabs, fabsl, hypot, isfinite, sin, sqrt, sqrtl
+from libc.math cimport INFINITY, NAN, atan2, fabs, fabsl, hypot, isfinite, sin, sqrtl
 from libc.stdlib cimport free, malloc
 from libcpp.vector cimport vector
 

@@ -195,7 +195,9 @@ cdef inline double screen(const Piece* s, const Biarc* b, int samples, double bo
     return max(worst, sampled(s, b.g, b.t, b.kappa1, b.split, b.u1, samples))
 
 
-cdef inline Proof prove(const Piece* s, const Biarc* b, double tolerance, bint lazily) noexcept nogil:
+cdef inline Proof prove(
+    const Piece* s, const Biarc* b, double tolerance, bint lazily
+) noexcept nogil:
     """Both arcs' exact deviations (``inf`` for an invalid biarc); ``lazily``, the second arc
     is not measured (NaN) when the first is out of the tolerance."""
     cdef Proof p

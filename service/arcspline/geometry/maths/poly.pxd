@@ -234,28 +234,45 @@ cdef inline int critical_points(
 
 
 cdef inline bint positive_on(const double* c, int degree, double lo, double hi) noexcept nogil:
-    """Whether ``c > 0`` on ``[lo, hi]``: all Bernstein coefficients positive proves it;
-    otherwise the smallest value, at an end or a root of ``c'``, decides."""
+    """Whether ``c > 0`` on ``(lo, hi)`` (and ``≥ 0`` at the ends): a root at an end, within
+    the rounding of its value there (the speed of a curve vanishing at a cusp or at coincident
+    control points), is divided out first — as ``(u − lo)`` or ``(hi − u)``, positive inside —
+    then all Bernstein coefficients positive prove it; otherwise the smallest value, at an
+    end or a root of ``c'``, decides."""
     cdef double points[MAX_POINTS]
     cdef double slope[MAX_COEFFS]
     cdef double b[MAX_COEFFS]
-    degree = degree_of(c, degree)
+    cdef double q[MAX_COEFFS]
+    cdef int i, n, before
+    for i in range(degree + 1):
+        q[i] = c[i]
+    degree = degree_of(q, degree)
+    for _ in range(3):
+        before = degree
+        degree = deflate_end(q, degree, lo)
+        if degree < before:
+            continue
+        degree = deflate_end(q, degree, hi)
+        if degree < before:
+            for i in range(degree + 1):
+                q[i] = -q[i]  # (u − hi)·q = (hi − u)·(−q)
+            continue
+        break
     if degree < 0:
         return False
-    bernstein(c, degree, lo, hi, b)
-    cdef double error = bernstein_error(c, degree, lo, hi)
-    cdef int i, n
+    bernstein(q, degree, lo, hi, b)
+    cdef double error = bernstein_error(q, degree, lo, hi)
     cdef bint all_positive = True
     for i in range(degree + 1):
         all_positive = all_positive and b[i] > error
     if all_positive:
         return True
-    cdef double low = min(horner(c, degree, lo), horner(c, degree, hi))
+    cdef double low = min(horner(q, degree, lo), horner(q, degree, hi))
     if degree >= 2:
-        derivative(c, degree, slope)
+        derivative(q, degree, slope)
         n = critical_points(slope, degree - 1, lo, hi, points, False, False)
         for i in range(n):
-            low = min(low, horner(c, degree, points[i]))
+            low = min(low, horner(q, degree, points[i]))
     return low > 0.0
 
 

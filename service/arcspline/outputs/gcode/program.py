@@ -34,7 +34,10 @@ def _header(plans: Sequence[Plan], parts: Sequence[Part], options: GcodeOptions)
         + (f", {len(parts)} paths)" if len(parts) > 1 else ")")
     )
     yield f"(program: {moves} moves, {arcs} arcs G2 G3, {moves - arcs} lines G1)"
-    yield f"(measured max deviation of the program from the curve {measured:.6g} {units}, {d} decimals)"
+    yield (
+        f"(measured max deviation of the program from the curve {measured:.6g} {units}, "
+        f"{d} decimals)"
+    )
 
 
 def _text(plans: Sequence[Plan], parts: Sequence[Part], options: GcodeOptions) -> Iterator[str]:
