@@ -15,14 +15,15 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 import numpy.typing as npt
 
-from .curves.segments import CircularArc, Cubic, EllipticalArc, Line, Path, Quadratic, Segment
+from .curves.segments import CircularArc, Cubic, Line, Path, Quadratic, Segment
 from .curves.split import SEGMENT_FIELDS, SEGMENT_KINDS, split
 from .errors import GeometryError
-from .fit import STRATEGIES, FitMany, StrategyName
+from .fit import MONOTONE_PIECES, STRATEGIES, FitMany, StrategyName
 from .fit.batch import FRAME_FIELDS, PIECE_KINDS, STATS_FIELDS, STATUS
 from .limits import DEFAULT_LIMITS, Limits
 from .measure import circle_deviations, line_deviations, points
@@ -231,18 +232,24 @@ def segment_row(segment: Segment) -> list[float]:
     return row
 
 
-def _check(segment: Segment, where: str) -> None:
+def _check(table: FloatArray, owner: list[tuple[int, int]]) -> None:
     """Numbers the kernels can hold: finite, below ``MAX_MAGNITUDE``; radii > 0; sweeps
-    within a full turn."""
-    values = [v for part in segment for v in (part if isinstance(part, tuple) else (part,))]
-    if not all(math.isfinite(v) and abs(v) < MAX_MAGNITUDE for v in values):
-        raise GeometryError(where, f"has a number that is not finite or beyond ±{MAX_MAGNITUDE:g}")
-    if isinstance(segment, CircularArc | EllipticalArc):
-        radii = (segment.radius,) if isinstance(segment, CircularArc) else (segment.rx, segment.ry)
-        if not all(r > 0.0 for r in radii):
-            raise GeometryError(where, "an arc's radii must be > 0")
-        if not 0.0 < abs(segment.sweep_rad) < 2.0 * math.pi:
-            raise GeometryError(where, "an arc's sweep must be non-zero and less than a full turn")
+    within a full turn. Raises for the first segment that fails, naming it."""
+    kind = table[:, _SEG["kind"]]
+    arcs = kind >= SEGMENT_KINDS["arc"]
+    sweep = np.abs(table[:, _SEG["sweep_rad"]])
+    with np.errstate(invalid="ignore"):
+        bad_number = ~np.all(np.abs(table) < MAX_MAGNITUDE, axis=1)
+        bad_radius = arcs & ~((table[:, _SEG["rx"]] > 0.0) & (table[:, _SEG["ry"]] > 0.0))
+        bad_sweep = arcs & ~((sweep > 0.0) & (sweep < 2.0 * math.pi))
+    for bad, why in (
+        (bad_number, f"has a number that is not finite or beyond ±{MAX_MAGNITUDE:g}"),
+        (bad_radius, "an arc's radii must be > 0"),
+        (bad_sweep, "an arc's sweep must be non-zero and less than a full turn"),
+    ):
+        if bad.any():
+            i, j = owner[int(np.argmax(bad))]
+            raise GeometryError(_where(i, j), why)
 
 
 def approximate_path(
@@ -268,89 +275,133 @@ def approximate_path(
         if not sub.segments:
             raise GeometryError(f"path.subpaths[{i}]", "has no segments")
         for j, segment in enumerate(sub.segments):
-            _check(segment, _where(i, j))
             rows.append(segment_row(segment))
             owner.append((i, j))
     table = np.array(rows, dtype=np.float64)
-    frames, pieces = split(table, limits.max_segments)
+    _check(table, owner)
+    # A strategy that does not need monotone curvature gets fewer cuts; where that fails on
+    # a piece (a sharp curvature peak inside it), the path is cut fully and fitted again.
+    done = _fit(table, fit, float(tolerance), limits, MONOTONE_PIECES[strategy])
+    if not done.ok:
+        done = _fit(table, fit, float(tolerance), limits, True)
+    bad = np.flatnonzero(done.status != STATUS["ok"])
+    if len(bad):
+        k = int(bad[0])
+        i, j = owner[int(done.pieces[k, 0])]
+        raise _refusal(int(done.status[k]), tolerance, _where(i, j), done.frames[k], limits)
+    return _gather(path, done, float(tolerance), strategy)
+
+
+class _Fitted(NamedTuple):
+    frames: FloatArray
+    pieces: FloatArray
+    blocks: list[FloatArray]
+    where: IntArray
+    stats: FloatArray
+    status: npt.NDArray[np.int32]
+
+    @property
+    def ok(self) -> bool:
+        """Every piece fitted but those below the tolerance floor (which more cuts cannot
+        help)."""
+        status = self.status
+        return not np.any((status != STATUS["ok"]) & (status != STATUS["tolerance_floor"]))
+
+
+def _fit(
+    table: FloatArray, fit: FitMany, tolerance: float, limits: Limits, extrema: bool
+) -> _Fitted:
+    """Cut the segments (at curvature extrema too, if ``extrema``) and fit every piece under
+    one segment budget."""
+    frames, pieces = split(table, limits.max_segments, extrema)
     if frames is None or pieces is None:
         raise GeometryError(
             "tolerance",
-            f"the path needs more than the limit of {limits.max_segments} segments; split it "
-            "into several requests",
+            f"the path needs more than the limit of {limits.max_segments} segments; "
+            "split it into several requests",
             kind="segment_limit",
             limit=float(limits.max_segments),
         )
-    tol = np.full(len(frames), float(tolerance))
+    tol = np.full(len(frames), tolerance)
     blocks, where, stats, status, _aux = fit(
         frames, tol, limits.max_segments, limits.min_relative_tolerance, True
     )
-    bad = np.flatnonzero(status != STATUS["ok"])
-    if len(bad):
-        k = int(bad[0])
-        i, j = owner[int(pieces[k, 0])]
-        raise _refusal(int(status[k]), tolerance, _where(i, j), frames[k], limits)
-    piece_segment = pieces[:, 0].astype(np.int64)
-    piece_subpath = np.array([owner[s][0] for s in piece_segment.tolist()], dtype=np.int64)
-    results = []
-    first_segment = 0
-    for i, sub in enumerate(path.subpaths):
-        ks = np.flatnonzero(piece_subpath == i)
-        local_pieces = pieces[ks].copy()
-        local_pieces[:, 0] -= first_segment
-        first_segment += len(sub.segments)
-        if len(ks) == 0:
-            raise GeometryError(f"path.subpaths[{i}]", "has no length (all its points coincide)")
-        parts = []
-        for n, k in enumerate(ks.tolist()):
-            block, begin, end = where[k]
-            part = blocks[block][begin:end].copy()
-            for name in ("u_start", "u_end", "u_at_max_deviation"):
-                part[:, COLUMN[name]] += n
-            parts.append(part)
-        body = _merge_circular(np.concatenate(parts), local_pieces, frames[ks], sub.segments)
-        start = sub.segments[0].start
-        curve = SubpathCurve(
-            frames[ks],
-            Point(*start),
-            Point(*sub.segments[-1].end),
-            float(frames[ks, _FRAME["coordinate_scale"]].max()),
+    return _Fitted(frames, pieces, blocks, where, stats, status)
+
+
+def _gather(path: Path, done: _Fitted, tolerance: float, strategy: str) -> PathSpline:
+    """The fitted rows of every piece, in order, cut into one spline per subpath (vectorised:
+    a path of thousands of subpaths costs microseconds each)."""
+    frames, pieces, blocks, where, stats = (
+        done.frames,
+        done.pieces,
+        done.blocks,
+        done.where,
+        done.stats,
+    )
+    # With one budget the pieces' rows follow each other through the blocks, in order.
+    table = np.concatenate(blocks)
+    counts = where[:, 2] - where[:, 1]
+    sizes = [len(sub.segments) for sub in path.subpaths]
+    first_segment = np.concatenate([[0], np.cumsum(sizes)])
+    piece_subpath = np.searchsorted(first_segment, pieces[:, 0], side="right") - 1
+    piece_bounds = np.searchsorted(piece_subpath, np.arange(len(sizes) + 1))
+    empty = np.flatnonzero(piece_bounds[1:] == piece_bounds[:-1])
+    if len(empty):
+        raise GeometryError(
+            f"path.subpaths[{int(empty[0])}]", "has no length (all its points coincide)"
         )
-        length = float(stats[ks, _STATS["spiral_length"]].sum())
-        spline = ArcSpline(body, _stats(body, length, tolerance), float(tolerance), strategy)
+    # u → piece parameter g = (index of the piece in its subpath) + u
+    row_piece = np.repeat(np.arange(len(pieces)), counts)
+    shift = (row_piece - piece_bounds[piece_subpath[row_piece]]).astype(np.float64)
+    for name in ("u_start", "u_end", "u_at_max_deviation"):
+        table[:, COLUMN[name]] += shift
+    segments = [segment for sub in path.subpaths for segment in sub.segments]
+    table, row_piece = _merge_circular(table, row_piece, pieces, frames, segments)
+    row_bounds = np.searchsorted(row_piece, piece_bounds)
+    lengths = np.add.reduceat(stats[:, _STATS["spiral_length"]], piece_bounds[:-1])
+    scales = np.maximum.reduceat(frames[:, _FRAME["coordinate_scale"]], piece_bounds[:-1])
+    summaries = _stats(table, row_bounds, lengths, tolerance)
+    results = []
+    for i, sub in enumerate(path.subpaths):
+        k0, k1 = int(piece_bounds[i]), int(piece_bounds[i + 1])
+        local_pieces = pieces[k0:k1].copy()
+        local_pieces[:, 0] -= first_segment[i]
+        curve = SubpathCurve(
+            frames[k0:k1], Point(*sub.segments[0].start), Point(*sub.segments[-1].end),
+            float(scales[i]),
+        )  # fmt: skip
+        body = table[row_bounds[i] : row_bounds[i + 1]]
+        spline = ArcSpline(body, summaries[i], tolerance, strategy)
         results.append(SubpathSpline(spline, curve, sub.closed, local_pieces))
-    total = np.concatenate([r.spline.table for r in results])
-    overall = _stats(total, sum(r.spline.stats.spiral_length for r in results), tolerance)
-    return PathSpline(tuple(results), overall, float(tolerance), strategy)
+    (overall,) = _stats(table, np.array([0, len(table)]), np.array([lengths.sum()]), tolerance)
+    return PathSpline(tuple(results), overall, tolerance, strategy)
 
 
 def _merge_circular(
-    body: FloatArray, pieces: FloatArray, frames: FloatArray, segments: Sequence[Segment]
-) -> FloatArray:
+    table: FloatArray,
+    row_piece: IntArray,
+    pieces: FloatArray,
+    frames: FloatArray,
+    segments: Sequence[Segment],
+) -> tuple[FloatArray, IntArray]:
     """The rows of an input circular arc (one per quarter-turn piece) as the one arc it is:
-    its own centre, radius and sweep."""
-    kind = frames[:, _FRAME["kind"]]
-    if not np.any(kind == _ARC_PIECE):
-        return body
-    out = []
-    g = body[:, COLUMN["u_start"]]
-    row_piece = np.floor(g).astype(np.int64)
-    done: set[int] = set()
-    for r in range(len(body)):
-        k = int(row_piece[r])
-        seg = int(pieces[k, 0])
-        if kind[k] != _ARC_PIECE:
-            out.append(body[r])
-            continue
-        if seg in done:
-            continue
-        done.add(seg)
-        arc = segments[seg]
+    its own centre, radius and sweep. Returns the table and each row's piece."""
+    is_arc_piece = frames[row_piece, _FRAME["kind"]] == _ARC_PIECE
+    if not is_arc_piece.any():
+        return table, row_piece
+    segment = pieces[row_piece, 0].astype(np.int64)
+    # Keep every row but the second and later rows of an arc segment.
+    later = is_arc_piece & np.concatenate([[False], segment[1:] == segment[:-1]])
+    keep = ~later
+    for r in np.flatnonzero(is_arc_piece & keep).tolist():
+        arc = segments[int(segment[r])]
         assert isinstance(arc, CircularArc)
-        mine = np.flatnonzero(pieces[row_piece, 0] == seg)
-        row = body[mine[0]].copy()
-        last = body[mine[-1]]
-        row[COLUMN["end_x"]], row[COLUMN["end_y"]] = last[COLUMN["end_x"]], last[COLUMN["end_y"]]
+        last = r
+        while last + 1 < len(table) and later[last + 1]:
+            last += 1
+        row = table[r]
+        row[COLUMN["end_x"]], row[COLUMN["end_y"]] = arc.end
         row[COLUMN["center_x"]], row[COLUMN["center_y"]] = arc.center
         row[COLUMN["radius"]] = arc.radius
         row[COLUMN["start_angle_rad"]] = math.atan2(
@@ -358,27 +409,37 @@ def _merge_circular(
         )
         row[COLUMN["sweep_rad"]] = arc.sweep_rad
         row[COLUMN["length"]] = arc.radius * abs(arc.sweep_rad)
-        row[COLUMN["u_end"]] = last[COLUMN["u_end"]]
-        out.append(row)
-    return np.array(out)
+        row[COLUMN["u_end"]] = table[last, COLUMN["u_end"]]
+    return table[keep], row_piece[keep]
 
 
-def _stats(table: FloatArray, curve_length: float, tolerance: float) -> SplineStats:
+def _stats(
+    table: FloatArray, bounds: IntArray, curve_lengths: FloatArray, tolerance: float
+) -> list[SplineStats]:
+    """The statistics of each group of rows ``bounds[i]:bounds[i + 1]`` (none empty)."""
+    starts = bounds[:-1]
     is_arc = table[:, COLUMN["is_arc"]] != 0.0
     dev = table[:, COLUMN["max_deviation"]]
-    worst = int(np.argmax(dev))
-    radii = table[is_arc, COLUMN["radius"]]
-    row = [0.0] * len(STATS_FIELDS)
-    row[_STATS["arc_count"]] = float(is_arc.sum())
-    row[_STATS["line_count"]] = float((~is_arc).sum())
-    row[_STATS["max_deviation"]] = float(dev[worst])
-    row[_STATS["u_at_max_deviation"]] = float(table[worst, COLUMN["u_at_max_deviation"]])
-    row[_STATS["mean_segment_deviation"]] = float(dev.mean())
-    row[_STATS["spiral_length"]] = curve_length
-    row[_STATS["spline_length"]] = float(table[:, COLUMN["length"]].sum())
-    row[_STATS["min_radius"]] = float(radii.min()) if len(radii) else math.nan
-    row[_STATS["max_radius"]] = float(radii.max()) if len(radii) else math.nan
-    return SplineStats.of(row, tolerance)
+    group = np.repeat(np.arange(len(starts)), np.diff(bounds))
+    # The first row of each group with its largest deviation.
+    order = np.lexsort((-dev, group))
+    worst = order[starts]
+    arcs = np.add.reduceat(is_arc.astype(np.float64), starts)
+    radius = np.where(is_arc, table[:, COLUMN["radius"]], np.nan)
+    with np.errstate(invalid="ignore"):
+        low = np.fmin.reduceat(radius, starts)
+        high = np.fmax.reduceat(radius, starts)
+    columns = np.zeros((len(starts), len(STATS_FIELDS)))
+    columns[:, _STATS["arc_count"]] = arcs
+    columns[:, _STATS["line_count"]] = np.diff(bounds) - arcs
+    columns[:, _STATS["max_deviation"]] = dev[worst]
+    columns[:, _STATS["u_at_max_deviation"]] = table[worst, COLUMN["u_at_max_deviation"]]
+    columns[:, _STATS["mean_segment_deviation"]] = np.add.reduceat(dev, starts) / np.diff(bounds)
+    columns[:, _STATS["spiral_length"]] = curve_lengths
+    columns[:, _STATS["spline_length"]] = np.add.reduceat(table[:, COLUMN["length"]], starts)
+    columns[:, _STATS["min_radius"]] = low
+    columns[:, _STATS["max_radius"]] = high
+    return [SplineStats.of(row, tolerance) for row in columns.tolist()]
 
 
 def _where(subpath: int, segment: int) -> str:

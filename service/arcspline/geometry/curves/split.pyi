@@ -8,5 +8,8 @@ SEGMENT_KINDS: dict[str, int]
 PIECE_FIELDS: tuple[str, ...]
 
 def split(
-    segments: npt.NDArray[np.float64], max_pieces: int
+    segments: npt.NDArray[np.float64],
+    max_pieces: int,
+    extrema: bool = True,
+    max_turn_rad: float = ...,
 ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]] | tuple[None, None]: ...

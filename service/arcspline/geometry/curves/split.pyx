@@ -152,7 +152,7 @@ cdef inline void set_frame(
     f[16], f[17], f[18] = w1, w2, <double>kind
 
 
-cdef int bezier_cuts(const Bezier* b, double* cuts) noexcept nogil:
+cdef int bezier_cuts(const Bezier* b, bint extrema, double* cuts) noexcept nogil:
     """The sorted cut parameters in ``(0, 1)`` of a curved Bézier segment; their number."""
     cdef double d[3][2]
     cdef double dd[2][2]
@@ -165,10 +165,10 @@ cdef int bezier_cuts(const Bezier* b, double* cuts) noexcept nogil:
     cdef double dot_dd[MAX_COEFFS]
     cdef double speed2[MAX_COEFFS]
     cdef double cross_ddd[MAX_COEFFS]
-    cdef double extrema[MAX_COEFFS]
+    cdef double curvature[MAX_COEFFS]
     cdef int i, j
     for i in range(MAX_COEFFS):
-        inflect[i] = dot_dd[i] = speed2[i] = cross_ddd[i] = extrema[i] = 0.0
+        inflect[i] = dot_dd[i] = speed2[i] = cross_ddd[i] = curvature[i] = 0.0
     for i in range(3):
         for j in range(2):
             inflect[i + j] += d[i][0] * dd[j][1] - d[i][1] * dd[j][0]
@@ -177,11 +177,12 @@ cdef int bezier_cuts(const Bezier* b, double* cuts) noexcept nogil:
             speed2[i + j] += d[i][0] * d[j][0] + d[i][1] * d[j][1]
         cross_ddd[i] = d[i][0] * dd[1][1] - d[i][1] * dd[1][0]
     # κ' ∝ (B'×B''')·|B'|² − 3·(B'×B'')·(B'·B'')
-    add_product(1.0, cross_ddd, 2, speed2, 4, extrema)
-    add_product(-3.0, inflect, 2, dot_dd, 3, extrema)
+    add_product(1.0, cross_ddd, 2, speed2, 4, curvature)
+    add_product(-3.0, inflect, 2, dot_dd, 3, curvature)
     cdef double found[MAX_COEFFS * 2]
     cdef int n = roots_in(inflect, 2, 0.0, 1.0, found)
-    n += roots_in(extrema, 6, 0.0, 1.0, found + n)
+    if extrema:
+        n += roots_in(curvature, 6, 0.0, 1.0, found + n)
     # Sort (a handful) and merge near repeats.
     cdef double x
     for i in range(1, n):
@@ -201,12 +202,14 @@ cdef int bezier_cuts(const Bezier* b, double* cuts) noexcept nogil:
     return count
 
 
-cdef int turn_cuts(const Bezier* b, double ta, double tb, double* cuts) noexcept nogil:
+cdef int turn_cuts(
+    const Bezier* b, double ta, double tb, double max_turn, double* cuts
+) noexcept nogil:
     """Cuts inside ``(ta, tb)`` where the tangent has turned by equal parts of at most
     ``MAX_TURN_RAD``: roots of ``B'(t)×d_j`` with ``B'·d_j > 0``, ``d_j`` the target
     directions; their number."""
     cdef double turn = turn_between(b, ta, tb)
-    cdef int parts = <int>ceil(fabs(turn) / MAX_TURN_RAD), j, k, n, count = 0
+    cdef int parts = <int>ceil(fabs(turn) / max_turn), j, k, n, count = 0
     if parts <= 1:
         return 0
     parts = min(parts, 8)
@@ -234,7 +237,8 @@ cdef int turn_cuts(const Bezier* b, double ta, double tb, double* cuts) noexcept
 
 
 cdef void bezier_pieces(
-    const Bezier* b, int segment, double coordinates, vector[Row]* rows
+    const Bezier* b, int segment, double coordinates, bint extrema, double max_turn,
+    vector[Row]* rows
 ) noexcept nogil:
     cdef double ts[MAX_CUTS + 2]
     cdef double cuts[MAX_CUTS]
@@ -265,9 +269,9 @@ cdef void bezier_pieces(
                 ts[n] = cuts[i]
                 n += 1
     else:
-        m = bezier_cuts(b, cuts)
+        m = bezier_cuts(b, extrema, cuts)
         for i in range(m + 1):
-            k = turn_cuts(b, ts[n - 1], cuts[i] if i < m else 1.0, more)
+            k = turn_cuts(b, ts[n - 1], cuts[i] if i < m else 1.0, max_turn, more)
             for j in range(k):
                 if n < MAX_CUTS:
                     ts[n] = more[j]
@@ -369,7 +373,9 @@ cdef void conic_pieces(
         start = end
 
 
-def split(segments, long long max_pieces):
+def split(
+    segments, long long max_pieces, bint extrema=True, double max_turn_rad=0.5 * M_PI
+):
     """The frame table and piece table (``PIECE_FIELDS``) of the segments (rows of
     ``SEGMENT_FIELDS``), in order; ``None`` in place of both if there would be more than
     ``max_pieces`` pieces."""
@@ -407,7 +413,7 @@ def split(segments, long long max_pieces):
                                3.0 * (seg[Y2] - 2.0 * seg[Y1] + start.y))
                     b.c3 = vec(end.x - 3.0 * seg[X2] + 3.0 * seg[X1] - start.x,
                                end.y - 3.0 * seg[Y2] + 3.0 * seg[Y1] - start.y)
-                bezier_pieces(&b, i, seg[COORDINATES], &rows)
+                bezier_pieces(&b, i, seg[COORDINATES], extrema, max_turn_rad, &rows)
             elif kind == CIRCULAR or kind == ELLIPTICAL:
                 if seg[SWEEP] != 0.0:
                     conic_pieces(seg, i, kind == CIRCULAR, &rows)

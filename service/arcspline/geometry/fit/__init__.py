@@ -1,9 +1,11 @@
-"""Fitting strategies: how a spiral becomes arcs, each a compiled kernel behind one protocol.
+"""Fitting strategies: how a curve piece becomes arcs, each a compiled kernel behind one
+protocol.
 
-A strategy is a module with a ``fit_many`` function (:class:`FitMany`) and one line in
-:data:`STRATEGIES`. Every strategy shares the loop of ``batch.pyx`` (tolerance floor,
-assembly in world coordinates, placement checks, statistics) and supplies only the kernel
-that turns one canonical spiral into arcs (``arcs.pxd``'s ``FitFn``).
+A strategy is a module with a ``fit_many`` function (:class:`FitMany`) and a
+``MONOTONE_PIECES`` flag, and one line in ``_MODULES``. Every strategy shares the loop of
+``batch.pyx`` (tolerance floor, assembly in world coordinates, placement checks, statistics)
+and supplies only the kernel that turns one piece in its local frame into arcs (``arcs.pxd``'s
+``FitFn``).
 """
 
 from __future__ import annotations
@@ -36,11 +38,12 @@ class FitMany(Protocol):
     ) -> Batch: ...
 
 
+#: The strategy modules by the name a request gives: the one registration line each.
+_MODULES = {"subdivide": subdivide, "fewest-arcs": fewest_arcs}
 #: The strategies by the name a request gives.
-STRATEGIES: dict[str, FitMany] = {
-    "subdivide": subdivide.fit_many,
-    "fewest-arcs": fewest_arcs.fit_many,
-}
+STRATEGIES: dict[str, FitMany] = {name: m.fit_many for name, m in _MODULES.items()}
+#: Whether a strategy needs pieces of monotone curvature (``curves/split.pyx``).
+MONOTONE_PIECES: dict[str, bool] = {name: m.MONOTONE_PIECES for name, m in _MODULES.items()}
 
 if TYPE_CHECKING:
     StrategyName = str
@@ -48,4 +51,4 @@ else:
     #: The strategy names as a type (for the request schema), from the registry.
     StrategyName = Literal[tuple(STRATEGIES)]
 
-__all__ = ["STRATEGIES", "Batch", "FitMany", "StrategyName"]
+__all__ = ["MONOTONE_PIECES", "STRATEGIES", "Batch", "FitMany", "StrategyName"]

@@ -3,3 +3,4 @@
 from . import FitMany
 
 fit_many: FitMany
+MONOTONE_PIECES: bool

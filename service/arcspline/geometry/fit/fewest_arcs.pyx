@@ -709,6 +709,11 @@ cdef Status fewest(
     return OK
 
 
+#: Pieces need not have monotone curvature: the walk's arcs are proven by the general
+#: certificate alone, and fewer cuts leave it free to place its joints (docs/fewest-arcs.md §4).
+MONOTONE_PIECES = False
+
+
 def fit_many(
     frames, tolerances, int max_segments, double min_relative_tolerance, bint shared=False
 ):

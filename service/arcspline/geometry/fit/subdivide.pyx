@@ -143,6 +143,11 @@ cdef Status subdivide(
     return OK
 
 
+#: Pieces must have monotone curvature of one sign (cut at curvature extrema too): the
+#: paper's theorems, on which the subdivision's convergence rests, need it.
+MONOTONE_PIECES = True
+
+
 def fit_many(
     frames, tolerances, int max_segments, double min_relative_tolerance, bint shared=False
 ):
