@@ -27,7 +27,8 @@ from typing import NamedTuple
 import numpy as np
 
 from ..errors import GeometryError
-from ..fit.batch import PIECE_KINDS
+from ..fit.batch import PIECE_KINDS, frame_table
+from ..measure import circle_deviations, line_deviations
 from ..spline import FloatArray, Point
 from . import bezier
 from .piece import spiral_length
@@ -278,8 +279,8 @@ class Spiral:
         self, u0: FloatArray, u1: FloatArray, start: FloatArray, end: FloatArray
     ) -> FloatArray:
         """Exact largest distance from each piece ``[u0, u1]`` to the line ``start→end``
-        (:func:`~arcspline.geometry.curves.bezier.line_deviations`)."""
-        return bezier.line_deviations(self.control_points, u0, u1, start, end)
+        (``measure.pyx``, on the spiral's piece)."""
+        return line_deviations(self._frames, np.zeros(len(u0), np.int64), u0, u1, start, end)
 
     def circle_deviations(
         self,
@@ -290,8 +291,13 @@ class Spiral:
         r_end: FloatArray,
     ) -> FloatArray:
         """Exact largest distance from each piece ``[u0, u1]`` to the farther of two circles
-        about ``centre`` (:func:`~arcspline.geometry.curves.bezier.circle_deviations`)."""
-        return bezier.circle_deviations(self.control_points, u0, u1, centre, r_start, r_end)
+        about ``centre`` (``measure.pyx``, on the spiral's piece)."""
+        zero = np.zeros(len(u0), np.int64)
+        return circle_deviations(self._frames, zero, u0, u1, centre, r_start, r_end)
+
+    @cached_property
+    def _frames(self) -> FloatArray:
+        return frame_table([self.frame])
 
 
 # How a request gives a spiral: named tuples (they cross the worker boundary by the

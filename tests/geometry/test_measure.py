@@ -1,4 +1,4 @@
-"""Exact distances from pieces of a cubic Bézier to lines and circles (``curves/bezier.py``),
+"""Exact distances from curve pieces to lines and circles (``measure.pyx``), through a spiral,
 against dense sampling of the oracle's own Bernstein evaluation."""
 
 from __future__ import annotations
