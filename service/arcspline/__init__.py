@@ -14,10 +14,20 @@ The Python API (the HTTP service, the benchmarks and the tests use the same)::
     True
     >>> len(arcspline.approximate(spiral, 0.001, strategy="fewest-arcs"))
     7
+    >>> path = arcspline.parse_path_data("M 0 0 C 10 0 20 10 30 30 L 40 30 A 5 5 0 0 1 50 30")
+    >>> result = arcspline.approximate_path(path, 0.01)
+    >>> len(result.subpaths), result.segment_count, result.stats.line_count
+    (1, 12, 1)
+    >>> result.stats.max_deviation <= 0.01
+    True
 
 * **Curves** — :class:`Spiral` (Walton & Meek's cubic Bézier spiral) by its five parameters
   (:meth:`Spiral.from_parameters`) or its four control points
   (:meth:`Spiral.from_control_points`); both validate and raise :class:`GeometryError`.
+* **Paths** — :class:`Path` of :class:`Subpath` of segments (:class:`Line`,
+  :class:`Quadratic`, :class:`Cubic`, :class:`CircularArc`, :class:`EllipticalArc`), or SVG
+  path data through :func:`parse_path_data`; :func:`approximate_path` gives a
+  :class:`PathSpline`: one :class:`ArcSpline` per subpath, with each segment's source.
 * **Approximation** — :func:`approximate` (one curve; raises :class:`GeometryError`) and
   :func:`approximate_many` (many in one compiled loop; each failure in its place), with a
   strategy from :data:`STRATEGIES` (``"subdivide"``: the paper's method; ``"fewest-arcs"``)
@@ -43,16 +53,25 @@ from .geometry import (
     STRATEGY_NAMES,
     ArcSegment,
     ArcSpline,
+    CircularArc,
+    Cubic,
+    EllipticalArc,
     GeometryError,
     Limits,
+    Line,
     LineSegment,
+    Path,
+    PathSpline,
     Point,
+    Quadratic,
     Segment,
     SegmentColumns,
     Spiral,
     SplineStats,
+    Subpath,
     approximate,
     approximate_many,
+    approximate_path,
     min_tolerance,
 )
 
@@ -61,6 +80,8 @@ try:
 except PackageNotFoundError:  # pragma: no cover - running from a source tree
     __version__ = "0+unknown"
 
+from .paths import parse_path_data
+
 __all__ = [
     "COLUMN",
     "DEFAULT_LIMITS",
@@ -68,16 +89,26 @@ __all__ = [
     "STRATEGY_NAMES",
     "ArcSegment",
     "ArcSpline",
+    "CircularArc",
+    "Cubic",
+    "EllipticalArc",
     "GeometryError",
     "Limits",
+    "Line",
     "LineSegment",
+    "Path",
+    "PathSpline",
     "Point",
+    "Quadratic",
     "Segment",
     "SegmentColumns",
     "Spiral",
     "SplineStats",
+    "Subpath",
     "__version__",
     "approximate",
     "approximate_many",
+    "approximate_path",
     "min_tolerance",
+    "parse_path_data",
 ]

@@ -7,16 +7,20 @@ signed curvature); ``u`` is a curve's parameter in ``[0, 1]``. The method is Wal
 (1996), restated with every formula the code uses in ``docs/method.md``; section numbers (§)
 in docstrings refer to it.
 
-Layout: ``curves/`` (curve types), ``fit/`` (strategies, compiled), ``maths/`` (roots,
-quadrature), ``spline.py`` (results), ``limits.py``, ``errors.py``, ``approximate.py`` (the
-entry points).
+Layout: ``curves/`` (curve types, path segments, pieces and their cuts), ``fit/``
+(strategies, compiled), ``maths/`` (roots, polynomials, quadrature), ``deviation`` (the
+certificate), ``measure`` (pieces against lines and circles), ``spline.py`` (results),
+``paths.py`` (whole paths), ``limits.py``, ``errors.py``, ``approximate.py`` (the entry
+points).
 """
 
 from .approximate import approximate, approximate_many
 from .curves import Curve, CurveSpec, Spiral, SpiralFromControlPoints, SpiralFromParameters
+from .curves.segments import CircularArc, Cubic, EllipticalArc, Line, Path, Quadratic, Subpath
 from .errors import GeometryError
 from .fit import STRATEGIES, StrategyName
 from .limits import DEFAULT_LIMITS, Limits, min_tolerance
+from .paths import PathSpline, SubpathSpline, approximate_path
 from .spline import (
     COLUMN,
     ArcSegment,
@@ -38,12 +42,19 @@ __all__ = [
     "STRATEGY_NAMES",
     "ArcSegment",
     "ArcSpline",
+    "CircularArc",
+    "Cubic",
     "Curve",
     "CurveSpec",
+    "EllipticalArc",
     "GeometryError",
     "Limits",
+    "Line",
     "LineSegment",
+    "Path",
+    "PathSpline",
     "Point",
+    "Quadratic",
     "Segment",
     "SegmentColumns",
     "Spiral",
@@ -51,7 +62,10 @@ __all__ = [
     "SpiralFromParameters",
     "SplineStats",
     "StrategyName",
+    "Subpath",
+    "SubpathSpline",
     "approximate",
     "approximate_many",
+    "approximate_path",
     "min_tolerance",
 ]
