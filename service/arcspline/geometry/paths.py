@@ -12,6 +12,7 @@ parameter ``t``.
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -20,7 +21,7 @@ from typing import NamedTuple
 import numpy as np
 import numpy.typing as npt
 
-from .curves.segments import CircularArc, Cubic, Line, Path, Quadratic, Segment
+from .curves.segments import CircularArc, Cubic, EllipticalArc, Line, Path, Quadratic, Segment
 from .curves.split import SEGMENT_FIELDS, SEGMENT_KINDS, split
 from .errors import GeometryError
 from .fit import MONOTONE_PIECES, STRATEGIES, FitMany, StrategyName
@@ -179,7 +180,9 @@ class SubpathSpline:
         with np.errstate(invalid="ignore", divide="ignore"):
             conic = 0.5 + np.arctan(np.tan(0.5 * half) * (2.0 * u - 1.0)) / half
         fraction = np.where(half > 0.0, conic, u)
-        return seg.astype(np.int64), t0 + (t1 - t0) * fraction
+        # The ends of a piece are its segment's cut points exactly, so that rows tile.
+        t = np.where(fraction == 1.0, t1, t0 + (t1 - t0) * fraction)
+        return seg.astype(np.int64), t
 
 
 @dataclass(frozen=True, slots=True)
@@ -197,39 +200,60 @@ class PathSpline:
         return sum(len(s.spline) for s in self.subpaths)
 
 
-def segment_row(segment: Segment) -> list[float]:
-    """A segment as a row of ``SEGMENT_FIELDS`` (its kind, points and arc parameters)."""
-    row = [0.0] * len(SEGMENT_FIELDS)
+#: ``SEGMENT_FIELDS`` in the order :func:`segment_row` writes them.
+_ROW_ORDER = (
+    "kind", "x0", "y0", "x1", "y1", "x2", "y2", "x3", "y3", "cx", "cy", "rx", "ry",
+    "rotation_rad", "start_angle_rad", "sweep_rad", "coordinate_scale",
+)  # fmt: skip
+assert SEGMENT_FIELDS == _ROW_ORDER
+_KIND = {
+    Line: float(SEGMENT_KINDS["line"]),
+    Quadratic: float(SEGMENT_KINDS["quadratic"]),
+    Cubic: float(SEGMENT_KINDS["cubic"]),
+    CircularArc: float(SEGMENT_KINDS["arc"]),
+    EllipticalArc: float(SEGMENT_KINDS["elliptical_arc"]),
+}
+
+
+def segment_row(segment: Segment) -> tuple[float, ...]:
+    """A segment as a row of ``SEGMENT_FIELDS`` (its kind, points and arc parameters; the
+    coordinate scale is left 0 for :func:`segment_table`)."""
     (x0, y0), (x3, y3) = segment.start, segment.end
-    row[_SEG["x0"]], row[_SEG["y0"]], row[_SEG["x3"]], row[_SEG["y3"]] = x0, y0, x3, y3
-    coords = [x0, y0, x3, y3]
+    kind = _KIND[type(segment)]
     if isinstance(segment, Line):
-        kind = "line"
-    elif isinstance(segment, Quadratic):
-        kind = "quadratic"
-        row[_SEG["x1"]], row[_SEG["y1"]] = segment.control
-        coords += segment.control
-    elif isinstance(segment, Cubic):
-        kind = "cubic"
-        row[_SEG["x1"]], row[_SEG["y1"]] = segment.control1
-        row[_SEG["x2"]], row[_SEG["y2"]] = segment.control2
-        coords += [*segment.control1, *segment.control2]
+        return (kind, x0, y0, 0.0, 0.0, 0.0, 0.0, x3, y3, *_NO_ARC)
+    if isinstance(segment, Quadratic):
+        return (kind, x0, y0, *segment.control, 0.0, 0.0, x3, y3, *_NO_ARC)
+    if isinstance(segment, Cubic):
+        return (kind, x0, y0, *segment.control1, *segment.control2, x3, y3, *_NO_ARC)
+    if isinstance(segment, CircularArc):
+        rx = ry = segment.radius
+        rotation = 0.0
     else:
-        kind = "arc" if isinstance(segment, CircularArc) else "elliptical_arc"
-        if isinstance(segment, CircularArc):
-            rx = ry = segment.radius
-            rotation = 0.0
-        else:
-            rx, ry, rotation = segment.rx, segment.ry, segment.rotation_rad
-        cx, cy = segment.center
-        row[_SEG["cx"]], row[_SEG["cy"]], row[_SEG["rx"]], row[_SEG["ry"]] = cx, cy, rx, ry
-        row[_SEG["rotation_rad"]] = rotation
-        row[_SEG["start_angle_rad"]] = segment.start_angle_rad
-        row[_SEG["sweep_rad"]] = segment.sweep_rad
-        coords += [abs(cx) + max(rx, ry), abs(cy) + max(rx, ry)]
-    row[_SEG["kind"]] = float(SEGMENT_KINDS[kind])
-    row[_SEG["coordinate_scale"]] = max(abs(v) for v in coords)
-    return row
+        rx, ry, rotation = segment.rx, segment.ry, segment.rotation_rad
+    return (
+        kind, x0, y0, 0.0, 0.0, 0.0, 0.0, x3, y3, *segment.center, rx, ry, rotation,
+        segment.start_angle_rad, segment.sweep_rad, 0.0,
+    )  # fmt: skip
+
+
+_NO_ARC = (0.0,) * 8
+
+
+def segment_table(segments: Sequence[Segment]) -> FloatArray:
+    """The segments as rows of ``SEGMENT_FIELDS``, with each one's coordinate scale: the
+    largest magnitude of its points (and of its arc's centre plus radius)."""
+    table = np.array([segment_row(s) for s in segments], dtype=np.float64)
+    with np.errstate(invalid="ignore"):
+        reach = np.maximum(table[:, _SEG["rx"]], table[:, _SEG["ry"]])
+        table[:, _SEG["coordinate_scale"]] = np.maximum.reduce(
+            [
+                np.abs(table[:, _SEG["x0"] : _SEG["y3"] + 1]).max(axis=1),
+                np.abs(table[:, _SEG["cx"]]) + reach,
+                np.abs(table[:, _SEG["cy"]]) + reach,
+            ]
+        )
+    return table
 
 
 def _check(table: FloatArray, owner: list[tuple[int, int]]) -> None:
@@ -242,8 +266,13 @@ def _check(table: FloatArray, owner: list[tuple[int, int]]) -> None:
         bad_number = ~np.all(np.abs(table) < MAX_MAGNITUDE, axis=1)
         bad_radius = arcs & ~((table[:, _SEG["rx"]] > 0.0) & (table[:, _SEG["ry"]] > 0.0))
         bad_sweep = arcs & ~((sweep > 0.0) & (sweep < 2.0 * math.pi))
+    # Each segment starts where the one before it in its subpath ends, to the bit.
+    starts, ends = table[1:, _SEG["x0"] : _SEG["y0"] + 1], table[:-1, _SEG["x3"] : _SEG["y3"] + 1]
+    same_subpath = np.array([a[0] == b[0] for a, b in itertools.pairwise(owner)], dtype=bool)
+    broken = np.concatenate([[False], same_subpath & np.any(starts != ends, axis=1)])
     for bad, why in (
         (bad_number, f"has a number that is not finite or beyond ±{MAX_MAGNITUDE:g}"),
+        (broken, "does not start where the segment before it ends"),
         (bad_radius, "an arc's radii must be > 0"),
         (bad_sweep, "an arc's sweep must be non-zero and less than a full turn"),
     ):
@@ -269,15 +298,12 @@ def approximate_path(
         raise GeometryError("tolerance", f"must be a finite number > 0, got {tolerance!r}")
     if not path.subpaths:
         raise GeometryError("path", "has no subpaths")
-    rows: list[list[float]] = []
     owner: list[tuple[int, int]] = []
     for i, sub in enumerate(path.subpaths):
         if not sub.segments:
             raise GeometryError(f"path.subpaths[{i}]", "has no segments")
-        for j, segment in enumerate(sub.segments):
-            rows.append(segment_row(segment))
-            owner.append((i, j))
-    table = np.array(rows, dtype=np.float64)
+        owner += [(i, j) for j in range(len(sub.segments))]
+    table = segment_table([segment for sub in path.subpaths for segment in sub.segments])
     _check(table, owner)
     # A strategy that does not need monotone curvature gets fewer cuts; where that fails on
     # a piece (a sharp curvature peak inside it), the path is cut fully and fitted again.
@@ -361,21 +387,27 @@ def _gather(path: Path, done: _Fitted, tolerance: float, strategy: str) -> PathS
     row_bounds = np.searchsorted(row_piece, piece_bounds)
     lengths = np.add.reduceat(stats[:, _STATS["spiral_length"]], piece_bounds[:-1])
     scales = np.maximum.reduceat(frames[:, _FRAME["coordinate_scale"]], piece_bounds[:-1])
-    summaries = _stats(table, row_bounds, lengths, tolerance)
-    results = []
-    for i, sub in enumerate(path.subpaths):
-        k0, k1 = int(piece_bounds[i]), int(piece_bounds[i + 1])
-        local_pieces = pieces[k0:k1].copy()
-        local_pieces[:, 0] -= first_segment[i]
-        curve = SubpathCurve(
-            frames[k0:k1], Point(*sub.segments[0].start), Point(*sub.segments[-1].end),
-            float(scales[i]),
-        )  # fmt: skip
-        body = table[row_bounds[i] : row_bounds[i + 1]]
-        spline = ArcSpline(body, summaries[i], tolerance, strategy)
-        results.append(SubpathSpline(spline, curve, sub.closed, local_pieces))
-    (overall,) = _stats(table, np.array([0, len(table)]), np.array([lengths.sum()]), tolerance)
-    return PathSpline(tuple(results), overall, tolerance, strategy)
+    summaries = _stats(table, row_bounds, lengths)
+    of_batch = ArcSpline._of_batch
+    local_pieces = pieces.copy()
+    local_pieces[:, 0] -= first_segment[piece_subpath]
+    results = [
+        SubpathSpline(
+            of_batch(table, r0, r1, summaries, i, tolerance, strategy),
+            SubpathCurve(
+                frames[k0:k1], Point(*sub.segments[0].start), Point(*sub.segments[-1].end), scale
+            ),
+            sub.closed,
+            local_pieces[k0:k1],
+        )
+        for i, (sub, k0, k1, r0, r1, scale) in enumerate(zip(
+            path.subpaths, piece_bounds[:-1].tolist(), piece_bounds[1:].tolist(),
+            row_bounds[:-1].tolist(), row_bounds[1:].tolist(), scales.tolist(),
+            strict=True,
+        ))
+    ]  # fmt: skip
+    (overall,) = _stats(table, np.array([0, len(table)]), np.array([lengths.sum()])).tolist()
+    return PathSpline(tuple(results), SplineStats.of(overall, tolerance), tolerance, strategy)
 
 
 def _merge_circular(
@@ -413,10 +445,9 @@ def _merge_circular(
     return table[keep], row_piece[keep]
 
 
-def _stats(
-    table: FloatArray, bounds: IntArray, curve_lengths: FloatArray, tolerance: float
-) -> list[SplineStats]:
-    """The statistics of each group of rows ``bounds[i]:bounds[i + 1]`` (none empty)."""
+def _stats(table: FloatArray, bounds: IntArray, curve_lengths: FloatArray) -> FloatArray:
+    """The statistics rows (``STATS_FIELDS``) of each group of rows ``bounds[i]:bounds[i + 1]``
+    (none empty)."""
     starts = bounds[:-1]
     is_arc = table[:, COLUMN["is_arc"]] != 0.0
     dev = table[:, COLUMN["max_deviation"]]
@@ -439,7 +470,7 @@ def _stats(
     columns[:, _STATS["spline_length"]] = np.add.reduceat(table[:, COLUMN["length"]], starts)
     columns[:, _STATS["min_radius"]] = low
     columns[:, _STATS["max_radius"]] = high
-    return [SplineStats.of(row, tolerance) for row in columns.tolist()]
+    return columns
 
 
 def _where(subpath: int, segment: int) -> str:
