@@ -15,7 +15,7 @@ PORT   ?= 8000
 help:
 	@echo "make run         start the service on $(HOST):$(PORT) (installs into .venv first)"
 	@echo "make test        ruff, mypy and the whole pytest suite"
-	@echo "make bench       benchmarks that print figures (core, fewest-arcs, service, start-up)"
+	@echo "make bench       benchmarks that print figures (core, fewest-arcs, paths, service, start-up)"
 	@echo "make openapi     regenerate openapi/openapi.json from the app"
 	@echo "make image       build the container image arcspline:local (podman)"
 	@echo "make image-test  build, run and check the image and the Kubernetes Deployment"
@@ -57,6 +57,7 @@ test: lint typecheck pytest
 bench: $(KERNELS)
 	$(BIN)/python bench/core.py
 	$(BIN)/python bench/fewest.py
+	$(BIN)/python bench/paths.py
 	$(BIN)/python bench/service.py
 	$(BIN)/python bench/startup.py
 

@@ -407,17 +407,9 @@ def counts_section(corpus: np.ndarray, paths: list[Path]) -> dict[float, Counts]
     )
     print(
         "   pieces per cubic before fitting: baseline (inflections only) "
-        f"{base_pieces.mean():.3f}, service (inflections, curvature extrema, quarter turns) "
-        f"{out[TOLERANCES[0]].pieces.mean():.3f}"
-    )
-    floor = out[TOLERANCES[0]].pieces
-    below = sum(int(((c.few >= 0) & (c.few < 2 * floor)).sum()) for c in out.values())
-    at_floor = ", ".join(f"{tol:g}: {int((c.few == 2 * floor).sum())}" for tol, c in out.items())
-    print(
-        f"   two segments per service piece (one biarc each) = {2 * floor.mean():.3f} per "
-        f"cubic, {2 * floor.sum() / out[TOLERANCES[0]].base.sum():.3f} of the baseline at "
-        f"{TOLERANCES[0]:g}; fewest-arcs below it on {below} cubic-tolerances, at it on "
-        f"({at_floor}) cubics"
+        f"{base_pieces.mean():.3f}, subdivide (inflections, curvature extrema, quarter turns) "
+        f"{out[TOLERANCES[0]].pieces.mean():.3f}; fewest-arcs cuts at inflections, cusps and "
+        "quarter turns only (docs/fewest-arcs.md §4)"
     )
     rng = np.random.default_rng(SEED + 1)
     sample = rng.choice(n, 20, replace=False)
