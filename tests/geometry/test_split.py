@@ -224,7 +224,10 @@ NAMED_BEZIERS = {
         *(
             pt(*p)
             for p in Spiral.from_parameters(
-                start=(1.5, 3.0), start_tangent=(1.0, 0.0), turn_angle_deg=51.34, end_curvature=0.41574
+                start=(1.5, 3.0),
+                start_tangent=(1.0, 0.0),
+                turn_angle_deg=51.34,
+                end_curvature=0.41574,
             ).control_points
         )
     ),
@@ -389,9 +392,7 @@ def ellipse(
         c, s = math.cos(rotation), math.sin(rotation)
         return pt(center[0] + c * x - s * y, center[1] + s * x + c * y)
 
-    return EllipticalArc(
-        at(start), at(start + sweep), pt(*center), rx, ry, rotation, start, sweep
-    )
+    return EllipticalArc(at(start), at(start + sweep), pt(*center), rx, ry, rotation, start, sweep)
 
 
 def circle(center: Sequence[float], r: float, start: float, sweep: float) -> CircularArc:

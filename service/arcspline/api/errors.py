@@ -25,7 +25,10 @@ from arcspline.geometry import GeometryError
 from arcspline.outputs.gcode import GcodeError
 from arcspline.worker.pool import JobTimeoutError, PoolError, QueueFullError
 
+from .path_schemas import PATH_TAGS
 from .schemas import SPIRAL_TAGS
+
+_UNION_TAGS = frozenset((*SPIRAL_TAGS, *PATH_TAGS))
 
 log = logging.getLogger(__name__)
 
@@ -167,8 +170,9 @@ def core_field_loc(field: str) -> Loc:
 
 
 def clean_loc(loc: Iterable[str | int]) -> Loc:
-    """A validation path as the client wrote it (without the spiral union's tags)."""
-    return [part for part in loc if part not in SPIRAL_TAGS]
+    """A validation path as the client wrote it (without the tags of the spiral, path and
+    segment unions)."""
+    return [part for part in loc if part not in _UNION_TAGS]
 
 
 def dotted(loc: Sequence[str | int]) -> str:
@@ -197,11 +201,14 @@ def geometry_problem(error: GeometryError, prefix: Loc) -> dict[str, Any]:
     return problem(kind, detail, errors=[item], limit=error.limit)
 
 
-def gcode_problem(error: GcodeError, prefix: Loc) -> dict[str, Any]:
-    """422 for a :class:`GcodeError`: the field is a ``gcode`` option, or the spiral itself
-    when it cannot be written at all (coordinates beyond what a controller takes)."""
+def gcode_problem(error: GcodeError, prefix: Loc, curve: str = "spiral") -> dict[str, Any]:
+    """422 for a :class:`GcodeError`: the field is a ``gcode`` option, or the curve itself
+    (the request's ``curve`` field: ``spiral`` or ``path``) when it cannot be written at all
+    (coordinates beyond what a controller takes)."""
     parts = str(error.field).split(".")
-    if parts[0] not in ("gcode", "spiral"):
+    if parts[0] == "spiral":
+        parts = [curve, *parts[1:]]
+    elif parts[0] != "gcode":
         parts = ["gcode", *parts]
     loc: Loc = [*prefix, *parts]
     item = {"loc": loc, "msg": error.message, "type": "gcode"}

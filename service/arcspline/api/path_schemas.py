@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from typing import Annotated, Any, Literal
 
-from pydantic import ConfigDict, Field, SkipValidation, field_validator
+from pydantic import ConfigDict, Discriminator, Field, SkipValidation, Tag, field_validator
 
 from arcspline.geometry import StrategyName
 from arcspline.paths import PathFromData, PathFromSegments, PathSpec
@@ -151,13 +151,28 @@ class PathSegmentsRequest(RequestModel):
     subpaths: list[SubpathRequest] = Field(min_length=1, max_length=MAX_SUBPATHS)
 
 
+#: Tags of the path union and of the segment union; validation paths carry them and the API
+#: removes them (a client wrote neither).
+PATH_TAGS = ("path-data", "path-segments", "line", "quadratic", "cubic", "arc", "elliptical_arc")
+
+
+def _path_tag(value: Any) -> str:
+    return PATH_TAGS[0] if isinstance(value, str) else PATH_TAGS[1]
+
+
+PathField = Annotated[
+    Annotated[str, Tag(PATH_TAGS[0])] | Annotated[PathSegmentsRequest, Tag(PATH_TAGS[1])],
+    Discriminator(_path_tag),
+]
+
+
 class PathRequest(RequestModel):
     """One path to approximate by arcs and lines within ``tolerance``: SVG path data
     (all commands, relative forms, S/T reflection, arc-flag shorthand) or the JSON form."""
 
     model_config = ConfigDict(json_schema_extra={"examples": [PATH_EXAMPLE]})
 
-    path: str | PathSegmentsRequest = Field(
+    path: PathField = Field(
         description="SVG path data (the `d` attribute), or subpaths of typed segments."
     )
     tolerance: float = Field(gt=0, description="Largest distance allowed from the path.")

@@ -78,7 +78,7 @@ async def approximate_path(body: PathRequest, request: Request) -> RawJSONRespon
         runtime.metrics.job_ok("paths", result.arc_count, result.line_count)
         return RawJSONResponse(result.body)
     runtime.metrics.job_error("paths")
-    raise ProblemError(job_problem(result, ["body"]))
+    raise ProblemError(job_problem(result, ["body"], "path"))
 
 
 @router.post(
@@ -128,7 +128,9 @@ async def approximate_paths_batch(body: PathBatchRequest, request: Request) -> R
         results: list[JobResult] = outcome
         for (i, _job), result in zip(chunk, results, strict=True):
             entries[i] = (
-                result if isinstance(result, Encoded) else job_problem(result, ["body", "jobs", i])
+                result
+                if isinstance(result, Encoded)
+                else job_problem(result, ["body", "jobs", i], "path")
             )
     return RawJSONResponse(batch_body(entries, runtime, "paths_batch"))
 
@@ -150,5 +152,5 @@ async def preview_path(body: PathRequest, request: Request) -> SVGResponse:
         render, job, settings.path_limits, time_limit_s=settings.job_time_limit_s
     )
     if not isinstance(result, Document):
-        raise ProblemError(job_problem(result, ["body"]))
+        raise ProblemError(job_problem(result, ["body"], "path"))
     return SVGResponse(result.body)

@@ -28,8 +28,11 @@ def to_job(
     return Job(request.spiral.spec(), request.tolerance, request.strategy, outputs)
 
 
-def job_problem(error: GeometryError | GcodeError, prefix: Loc) -> dict[str, Any]:
-    """The problem of a job the worker could not complete."""
+def job_problem(
+    error: GeometryError | GcodeError, prefix: Loc, curve: str = "spiral"
+) -> dict[str, Any]:
+    """The problem of a job the worker could not complete (``curve``: the request's field
+    that holds the curve)."""
     if isinstance(error, GeometryError):
         return geometry_problem(error, prefix)
-    return gcode_problem(error, prefix)
+    return gcode_problem(error, prefix, curve)

@@ -181,7 +181,7 @@ class SubpathSpline:
             conic = 0.5 + np.arctan(np.tan(0.5 * half) * (2.0 * u - 1.0)) / half
         fraction = np.where(half > 0.0, conic, u)
         # The ends of a piece are its segment's cut points exactly, so that rows tile.
-        t = np.where(fraction == 1.0, t1, t0 + (t1 - t0) * fraction)
+        t = np.where(u == 1.0, t1, np.where(u == 0.0, t0, t0 + (t1 - t0) * fraction))
         return seg.astype(np.int64), t
 
 

@@ -368,7 +368,10 @@ cdef void conic_pieces(
                   vec(p2.x - 2.0 * w1 * p1.x, p2.y - 2.0 * w1 * p1.y), vec(0.0, 0.0),
                   2.0 * (w1 - 1.0), 2.0 - 2.0 * w1, ARC if circular else FIT)
         row.segment = segment
-        row.t0, row.t1, row.half_angle = (pa - a0) / sweep, (pb - a0) / sweep, fabs(h)
+        # The segment's own ends exactly: (φ − a0)/sweep need not round to 0 and 1 there.
+        row.t0 = 0.0 if i == 0 else (pa - a0) / sweep
+        row.t1 = 1.0 if i == n - 2 else (pb - a0) / sweep
+        row.half_angle = fabs(h)
         rows.push_back(row)
         start = end
 

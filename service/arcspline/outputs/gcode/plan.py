@@ -157,13 +157,13 @@ def plan_program(spline: ArcSpline, curve: Curve, options: GcodeOptions) -> Plan
                 "spiral",
                 f"segment {worst} is an arc of radius {cols.radius[worst]:.6g} {options.units}, "
                 f"too large to write (I, J and R are bounded by {MAX_ARC_WORD:g}), and its "
-                f"chord would deviate from the spiral by {deviation[worst]:.3g}, more than "
+                f"chord would deviate from the curve by {deviation[worst]:.3g}, more than "
                 f"tolerance + 10^-{d} = {limit:.3g}; a smaller tolerance gives smaller arcs",
             )
         raise GcodeError(
             "decimals",
             f"{d} decimals are too few for tolerance {spline.tolerance:g}: segment {worst} "
-            f"would deviate from the spiral by {deviation[worst]:.3g} {options.units}, more "
+            f"would deviate from the curve by {deviation[worst]:.3g} {options.units}, more "
             f"than tolerance + 10^-{d} = {limit:.3g}; use more decimals or a larger tolerance",
         )
     return Plan(
