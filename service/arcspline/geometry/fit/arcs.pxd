@@ -1,9 +1,10 @@
 # cython: language_level=3
-"""What a fitting strategy hands to the assembly: arcs in the canonical frame.
+"""What a fitting strategy hands to the assembly: arcs in a piece's local frame.
 
-A strategy's kernel (:c:type:`FitFn`) turns one canonical spiral and a canonical tolerance
-into a G1 chain of arcs, in order from ``u = 0`` to ``u = 1``; ``fit/batch.pyx`` maps the chain
-to world coordinates and measures it. Strategies are registered in ``fit/__init__.py``.
+A strategy's kernel (:c:type:`FitFn`) turns one curve piece in its local frame
+(``curves/piece.pxd``) and a local tolerance into a G1 chain of arcs, in order from ``u = 0``
+to ``u = 1``; ``fit/batch.pyx`` maps the chain to world coordinates and measures it.
+Strategies are registered in ``fit/__init__.py``.
 """
 
 from libcpp.vector cimport vector

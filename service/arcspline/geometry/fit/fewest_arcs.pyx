@@ -2,8 +2,9 @@
 """Strategy ``fewest-arcs``: greedy longest biarcs with the joint chosen freely, then a tail
 merge (docs/fewest-arcs.md).
 
-In the canonical frame the spiral is walked from ``u = 0``: from the current end
-``A0 = Q(u0)`` the next biarc ends at the largest ``u1`` for which some member of Sabin's
+In its local frame the piece (the paper's spiral, or a piece of a path's segment) is walked
+from ``u = 0``: from the current end ``A0 = Q(u0)`` the next biarc ends at the largest ``u1``
+for which some member of Sabin's
 family between ``(A0, T(u0))`` and ``(Q(u1), T(u1))`` (``sabin.pxd``, join parameter ``λ``) is
 proven within the tolerance by the exact deviation (``deviation.pyx``). A step is found in
 one of two ways:
