@@ -412,15 +412,11 @@ def ellipse_point(arc: EllipticalArc | CircularArc, phi: np.ndarray) -> np.ndarr
 
 
 def check_conic(arc: EllipticalArc | CircularArc, frames: np.ndarray, pieces: np.ndarray) -> None:
-    """Checks shared by elliptical and circular arcs: tiling (to rounding; see the xfail
-    below for the exact end), shared end points, each piece's turn at most π/2, its half
-    angle, and its frame's points against the arc at ``φ = m + 2·atan(tan(h/2)·(2u − 1))``."""
+    """Checks shared by elliptical and circular arcs: exact tiling, shared end points, each
+    piece's turn at most π/2, its half angle, and its frame's points against the arc at
+    ``φ = m + 2·atan(tan(h/2)·(2u − 1))``."""
     t0, t1 = pieces[:, P["t0"]], pieces[:, P["t1"]]
-    assert t0[0] == 0.0
-    # (a0 + sweep − a0)/sweep rounds: exactly 1.0 is test_arc_pieces_end_at_t_1_exactly.
-    assert abs(t1[-1] - 1.0) <= 4 * EPS * (1 + abs(arc.start_angle_rad / arc.sweep_rad))
-    assert np.array_equal(t1[:-1], t0[1:])
-    assert np.all(t0 < t1)
+    check_tiling(pieces, int(pieces[0, P["segment"]]))
     check_shared_ends(frames, arc.start, arc.end)
     phi0, phi1 = arc.start_angle_rad + t0 * arc.sweep_rad, arc.start_angle_rad + t1 * arc.sweep_rad
     assert np.all(np.abs(phi1 - phi0) <= HALF_PI + 1e-12)
@@ -501,11 +497,6 @@ def test_random_elliptical_arcs_are_cut_at_their_vertices(
     assert len(cuts) == max(expected, 0)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="split.pyx conic_pieces: the last piece's t1 is (a0 + sweep − a0)/sweep, not 1.0 "
-    "(e.g. 1.0000000000000002 or 0.9999999999999999), so arc outputs report u_end ≠ 1",
-)
 @pytest.mark.parametrize(
     "arc",
     [
@@ -532,7 +523,10 @@ def test_random_elliptical_arcs_are_cut_at_their_vertices(
     ids=["elliptical", "circular"],
 )
 def test_arc_pieces_end_at_t_1_exactly(arc: EllipticalArc | CircularArc) -> None:
+    # Regression: the last piece's t1 was (a0 + sweep − a0)/sweep (1.0000000000000002 and
+    # 0.9999999999999999 here), so arc outputs reported u_end ≠ 1.
     _, pieces = cut(arc)
+    assert pieces[0, P["t0"]] == 0.0
     assert pieces[-1, P["t1"]] == 1.0
 
 
