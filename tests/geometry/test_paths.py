@@ -704,12 +704,6 @@ def test_straight_beziers_become_lines_on_the_source(d: str) -> None:
             assert po.check_path(path, outs, 0.001, samples=257).ok
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="exactly straight Béziers refused as 'turns too sharply (a near-cusp, or nearly "
-    "straight control points that double back)' (status stuck), though their mirror images "
-    "and versions along an axis are handled",
-)
 @pytest.mark.parametrize(
     "d",
     [
@@ -723,11 +717,6 @@ def test_straight_beziers_that_are_refused(d: str) -> None:
     lines_only(parse_path_data(d), 0.01)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="a straight cubic that doubles back gets an arc of radius 1.3e-14 at its "
-    "turning point (sweep 0.2 rad) instead of a corner between two lines",
-)
 def test_a_straight_cubic_has_no_micro_arc_at_its_turning_point() -> None:
     lines_only(parse_path_data("M -3 -4 C 9 12 3 4 0 0"), 0.01)
 
@@ -796,12 +785,6 @@ def test_a_smooth_closed_subpath_is_g1_at_its_seam(strategy: str) -> None:
         ("M 0 0 C 2 -12 0 -4 0 -4 L -2 4", "the last arc's end tangent is 0.675 rad off"),
     ],
 )
-@pytest.mark.xfail(
-    strict=True,
-    reason="a cubic whose last two control points coincide (P2 = P3, common in SVG) is "
-    "refused ('turns too sharply') or ends 0.675 rad off its end tangent — a corner where "
-    "the input is smooth; the mirror image (P0 = P1) is handled",
-)
 def test_coincident_last_control_points(d: str, breaks: str) -> None:
     path = parse_path_data(d)
     for strategy in STRATEGIES:
@@ -846,12 +829,6 @@ def test_u_ranges_tile_exactly(d: str, tolerance: float, strategy: str) -> None:
         assert ue[:-1] == us[1:]
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="an elliptical arc starting within rounding of a vertex (start angle −5.55e-17) "
-    "gets an empty piece with a NaN frame and is refused: 'tolerance: 0.01 cannot be held "
-    "in double precision'",
-)
 @pytest.mark.parametrize("strategy", STRATEGIES)
 def test_an_elliptical_arc_starting_at_a_vertex(strategy: str) -> None:
     d = "M 2.121320343559643 2.1213203435596424 A 3 7 45 0 1 -3.018914603595431 5.311223149815971"
@@ -860,12 +837,6 @@ def test_an_elliptical_arc_starting_at_a_vertex(strategy: str) -> None:
     check_structure(path, outs, 0.01)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="a near-cusp cubic gets a zero-length output line (start == end, u "
-    "0.49999999243..0.49999999465) — no direction — and, with fewest-arcs, arcs of radius "
-    "2.8e-16; exact cusps are handled",
-)
 @pytest.mark.parametrize("strategy", STRATEGIES)
 def test_a_near_cusp_gives_no_empty_output(strategy: str) -> None:
     d = (
@@ -945,11 +916,6 @@ def test_a_tolerance_below_the_floor_is_refused_naming_the_segment() -> None:
     assert err.limit > 1e-9
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="a curve of size 1e-199 is refused as 'path.subpaths[0]: has no length (all its "
-    "points coincide)', which is false and does not name the segment",
-)
 def test_tiny_curves_are_handled_or_refused_with_the_true_reason() -> None:
     path = parse_path_data("M 0 0 C 1e-199 0 1e-199 1e-199 0 1e-199")
     try:

@@ -35,6 +35,8 @@ IntArray = npt.NDArray[np.int64]
 #: Coordinates and radii stay below this magnitude, so that squares and products of them stay
 #: finite in double precision (as for spirals).
 MAX_MAGNITUDE = 1e150
+#: A segment smaller than this (but not a point) would underflow in the squares of its size.
+MIN_SIZE = 1e-150
 
 _SEG = {name: j for j, name in enumerate(SEGMENT_FIELDS)}
 _FRAME = {name: j for j, name in enumerate(FRAME_FIELDS)}
@@ -270,8 +272,11 @@ def _check(table: FloatArray, owner: list[tuple[int, int]]) -> None:
     starts, ends = table[1:, _SEG["x0"] : _SEG["y0"] + 1], table[:-1, _SEG["x3"] : _SEG["y3"] + 1]
     same_subpath = np.array([a[0] == b[0] for a, b in itertools.pairwise(owner)], dtype=bool)
     broken = np.concatenate([[False], same_subpath & np.any(starts != ends, axis=1)])
+    size = _sizes(table)
+    tiny = (size > 0.0) & (size < MIN_SIZE)
     for bad, why in (
         (bad_number, f"has a number that is not finite or beyond ±{MAX_MAGNITUDE:g}"),
+        (tiny, f"is smaller than {MIN_SIZE:g} across, too small for double precision"),
         (broken, "does not start where the segment before it ends"),
         (bad_radius, "an arc's radii must be > 0"),
         (bad_sweep, "an arc's sweep must be non-zero and less than a full turn"),
@@ -279,6 +284,28 @@ def _check(table: FloatArray, owner: list[tuple[int, int]]) -> None:
         if bad.any():
             i, j = owner[int(np.argmax(bad))]
             raise GeometryError(_where(i, j), why)
+
+
+def _sizes(table: FloatArray) -> FloatArray:
+    """Each segment's extent: its control points' largest offset from its start (a line's
+    length), or an arc's larger radius."""
+    kind = table[:, _SEG["kind"]]
+    start = table[:, _SEG["x0"] : _SEG["y0"] + 1]
+    used = {  # the control points each kind has, besides its start
+        "x1": kind == SEGMENT_KINDS["quadratic"],
+        "x2": kind == SEGMENT_KINDS["cubic"],
+        "x3": kind < SEGMENT_KINDS["arc"],
+    }
+    used["x1"] = used["x1"] | used["x2"]
+    size = np.where(
+        kind >= SEGMENT_KINDS["arc"], np.maximum(table[:, _SEG["rx"]], table[:, _SEG["ry"]]), 0.0
+    )
+    with np.errstate(invalid="ignore", over="ignore"):
+        for name, mask in used.items():
+            j = _SEG[name]
+            offset = np.abs(table[:, j : j + 2] - start).max(axis=1)
+            size = np.where(mask, np.maximum(size, offset), size)
+    return size
 
 
 def approximate_path(

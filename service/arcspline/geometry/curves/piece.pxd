@@ -17,6 +17,7 @@ X(u)·ΔW) / (W(u)·W(v))`` with the divided differences ``ΔX = x1 + x2(u + v) 
 v²)`` and ``ΔW = w1 + w2(u + v)``, so that short pieces keep full relative precision.
 """
 
+from libc.float cimport DBL_EPSILON
 from libc.math cimport atan2, cos, fabs, sin
 
 from arcspline.geometry.maths.quadrature cimport HALF_NODES, NODES, WEIGHTS
@@ -113,11 +114,16 @@ cdef inline Vec derivative_numerator(const Piece* p, double u) noexcept nogil:
 
 
 cdef inline Vec direction(const Piece* p, double u) noexcept nogil:
-    """A positive multiple of the tangent at ``u`` (not a unit vector). Where the speed is
-    exactly 0 (a cusp, or coincident control points, at an end) it is the limit of the
-    tangent from inside the piece: ``±(W²Q')'`` or ``(W²Q')''``."""
+    """A positive multiple of the tangent at ``u`` (not a unit vector). Where the speed is 0
+    to rounding (a cusp, a turning point or coincident control points, at an end) it is the
+    limit of the tangent from inside the piece: ``±(W²Q')'`` or ``(W²Q')''``."""
     cdef Vec d = derivative_numerator(p, u)
-    if d.x != 0.0 or d.y != 0.0:
+    # Zero to rounding (a cusp or turning point where a piece was cut): its sign is noise.
+    cdef double noise = 64.0 * DBL_EPSILON * (
+        fabs(p.x[1]) + fabs(p.y[1]) + 2.0 * (fabs(p.x[2]) + fabs(p.y[2]))
+        + 3.0 * (fabs(p.x[3]) + fabs(p.y[3]))
+    )
+    if fabs(d.x) + fabs(d.y) > noise:
         return d
     cdef double side = 1.0 if u < 0.5 else -1.0
     cdef double w = weight(p, u), dw = p.w[1] + 2.0 * u * p.w[2], ddw = 2.0 * p.w[2]

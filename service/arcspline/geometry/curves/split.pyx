@@ -54,11 +54,20 @@ cdef extern from *:
     #define ARCSPLINE_MAX_TURN_RAD (0.5 * M_PI)
     /* Cut points closer than this (in t) to an end or to each other are merged. */
     #define ARCSPLINE_CUT_SEPARATION 1e-9
+    /* Cuts whose points are closer than this (of the curve's size) are one cut. */
+    #define ARCSPLINE_CLUSTER_CHORD 1e-12
+    /* Curvature extrema closer than this (in t) to an inflection or cusp are not cut. */
+    #define ARCSPLINE_CUSP_SEPARATION 1e-6
+    /* Vertices of an ellipse closer than this (rad) to an end of its arc are not cut. */
+    #define ARCSPLINE_CUT_ANGLE 1e-9
     /* A Bézier curve whose B'×B'' is below this fraction of |B'|·|B''| is straight. */
     #define ARCSPLINE_STRAIGHT_RTOL 1e-13
     """
     const double MAX_TURN_RAD "ARCSPLINE_MAX_TURN_RAD"
     const double CUT_SEPARATION "ARCSPLINE_CUT_SEPARATION"
+    const double CUSP_SEPARATION "ARCSPLINE_CUSP_SEPARATION"
+    const double CLUSTER_CHORD "ARCSPLINE_CLUSTER_CHORD"
+    const double CUT_ANGLE "ARCSPLINE_CUT_ANGLE"
     const double STRAIGHT_RTOL "ARCSPLINE_STRAIGHT_RTOL"
 
 cdef enum:
@@ -79,12 +88,15 @@ cdef struct Row:
 
 
 cdef struct Bezier:
-    # B(t) = p0 + c1·t + c2·t² + c3·t³ (world), and its end point as stored.
+    # B(t) = p0 + c1·t + c2·t² + c3·t³ (world), its end point as stored, and B'(1) and
+    # B''(1)/2 from the control points (exactly 0 where the last two coincide).
     Vec p0
     Vec c1
     Vec c2
     Vec c3
     Vec end
+    Vec e1
+    Vec e2
 
 
 cdef inline Vec bezier_point(const Bezier* b, double t) noexcept nogil:
@@ -97,8 +109,23 @@ cdef inline Vec bezier_point(const Bezier* b, double t) noexcept nogil:
 
 
 cdef inline Vec bezier_derivative(const Bezier* b, double t) noexcept nogil:
-    return vec(b.c1.x + t * (2.0 * b.c2.x + 3.0 * t * b.c3.x),
-               b.c1.y + t * (2.0 * b.c2.y + 3.0 * t * b.c3.y))
+    """``B'(t)``, expanded about the nearer end: its error is then relative to the distance
+    from that end, and a speed that vanishes at an end (coincident control points) stays
+    accurate beside it."""
+    cdef double s
+    if t <= 0.5:
+        return vec(b.c1.x + t * (2.0 * b.c2.x + 3.0 * t * b.c3.x),
+                   b.c1.y + t * (2.0 * b.c2.y + 3.0 * t * b.c3.y))
+    s = t - 1.0
+    return vec(b.e1.x + s * (2.0 * b.e2.x + 3.0 * s * b.c3.x),
+               b.e1.y + s * (2.0 * b.e2.y + 3.0 * s * b.c3.y))
+
+
+cdef inline Vec bezier_half_second(const Bezier* b, double t) noexcept nogil:
+    """``B''(t)/2``, expanded about the nearer end."""
+    if t <= 0.5:
+        return vec(b.c2.x + 3.0 * t * b.c3.x, b.c2.y + 3.0 * t * b.c3.y)
+    return vec(b.e2.x + 3.0 * (t - 1.0) * b.c3.x, b.e2.y + 3.0 * (t - 1.0) * b.c3.y)
 
 
 cdef inline Vec bezier_direction(const Bezier* b, double t, double side) noexcept nogil:
@@ -109,7 +136,8 @@ cdef inline Vec bezier_direction(const Bezier* b, double t, double side) noexcep
     cdef double noise = 64.0 * DBL_EPSILON * (norm(b.c1) + 2.0 * norm(b.c2) + 3.0 * norm(b.c3))
     if norm(d) > noise:
         return d
-    d = vec(side * (2.0 * b.c2.x + 6.0 * t * b.c3.x), side * (2.0 * b.c2.y + 6.0 * t * b.c3.y))
+    d = bezier_half_second(b, t)
+    d = vec(side * d.x, side * d.y)
     if d.x != 0.0 or d.y != 0.0:
         return d
     return b.c3
@@ -180,9 +208,19 @@ cdef int bezier_cuts(const Bezier* b, bint extrema, double* cuts) noexcept nogil
     add_product(1.0, cross_ddd, 2, speed2, 4, curvature)
     add_product(-3.0, inflect, 2, dot_dd, 3, curvature)
     cdef double found[MAX_COEFFS * 2]
-    cdef int n = roots_in(inflect, 2, 0.0, 1.0, found)
+    cdef double peaks[MAX_COEFFS]
+    cdef int n = roots_in(inflect, 2, 0.0, 1.0, found), inflections = n, p, q
+    cdef bint near
     if extrema:
-        n += roots_in(curvature, 6, 0.0, 1.0, found + n)
+        # A curvature extremum this close to an inflection or cusp is the singularity's
+        # rounding (curvature is unbounded at a cusp), not a cut of its own.
+        for p in range(roots_in(curvature, 6, 0.0, 1.0, peaks)):
+            near = False
+            for q in range(inflections):
+                near = near or fabs(peaks[p] - found[q]) < CUSP_SEPARATION
+            if not near:
+                found[n] = peaks[p]
+                n += 1
     # Sort (a handful) and merge near repeats.
     cdef double x
     for i in range(1, n):
@@ -236,6 +274,36 @@ cdef int turn_cuts(
     return count
 
 
+cdef int merge_clusters(const Bezier* unit, double* ts, int n) noexcept nogil:
+    """Cuts whose points lie within ``CLUSTER_CHORD`` (of the curve's size) of each other
+    become one: the member where the speed is least — at a cusp, the roots of ``B'×B''`` and
+    of the curvature's derivative come in clusters around it. The ends stay the ends. The
+    new number of entries of ``ts`` (ascending, ``ts[0] = 0``, ``ts[n − 1] = 1``)."""
+    cdef int i = 1, m = 1, j, best
+    cdef Vec p, q
+    while i < n - 1:
+        j, best = i, i
+        p = bezier_point(unit, ts[i])
+        while j + 1 < n:
+            q = bezier_point(unit, ts[j + 1])
+            if hypot(q.x - p.x, q.y - p.y) > CLUSTER_CHORD:
+                break
+            j += 1
+            if j < n - 1 and norm(bezier_derivative(unit, ts[j])) < norm(
+                bezier_derivative(unit, ts[best])
+            ):
+                best = j
+            p = q
+        q = bezier_point(unit, ts[m - 1])
+        p = bezier_point(unit, ts[best])
+        if j < n - 1 and hypot(q.x - p.x, q.y - p.y) > CLUSTER_CHORD:
+            ts[m] = ts[best]  # a cluster clear of the end before it and of the last end
+            m += 1
+        i = j + 1
+    ts[m] = 1.0
+    return m + 1
+
+
 cdef void bezier_pieces(
     const Bezier* b, int segment, double coordinates, bint extrema, double max_turn,
     vector[Row]* rows
@@ -247,31 +315,43 @@ cdef void bezier_pieces(
     cdef double size = max(max(norm(b.c1), norm(b.c2)), norm(b.c3))
     if size == 0.0:
         return  # a single point: nothing to cut
+    # The cuts are found on the curve scaled to size 1 (they do not change with scale, and
+    # the curvature polynomial, of degree 5 in the coordinates, would overflow or underflow
+    # for coordinates far from 1).
+    cdef Bezier unit
+    unit.p0 = vec(0.0, 0.0)
+    unit.c1 = vec(b.c1.x / size, b.c1.y / size)
+    unit.c2 = vec(b.c2.x / size, b.c2.y / size)
+    unit.c3 = vec(b.c3.x / size, b.c3.y / size)
+    unit.end = vec((b.end.x - b.p0.x) / size, (b.end.y - b.p0.y) / size)
+    unit.e1 = vec(b.e1.x / size, b.e1.y / size)
+    unit.e2 = vec(b.e2.x / size, b.e2.y / size)
     # Straight: |B'×B''| negligible against |B'|·|B''| everywhere. Cut where it turns back.
-    cdef double span_d = norm(b.c1) + 2.0 * norm(b.c2) + 3.0 * norm(b.c3)
-    cdef double span_dd = 2.0 * norm(b.c2) + 6.0 * norm(b.c3)
-    cdef double bend = fabs(cross(b.c1, b.c2)) + fabs(cross(b.c1, b.c3)) + fabs(cross(b.c2, b.c3))
+    cdef double span_d = norm(unit.c1) + 2.0 * norm(unit.c2) + 3.0 * norm(unit.c3)
+    cdef double span_dd = 2.0 * norm(unit.c2) + 6.0 * norm(unit.c3)
+    cdef double bend = (fabs(cross(unit.c1, unit.c2)) + fabs(cross(unit.c1, unit.c3))
+                        + fabs(cross(unit.c2, unit.c3)))
     cdef bint straight = bend <= STRAIGHT_RTOL * span_d * span_dd
     cdef double c[MAX_COEFFS]
     cdef Vec axis
     ts[0] = 0.0
     n = 1
     if straight:
-        axis = vec(b.end.x - b.p0.x, b.end.y - b.p0.y)
+        axis = unit.end
         if axis.x == 0.0 and axis.y == 0.0:
-            axis = b.c1 if norm(b.c1) > 0.0 else (b.c2 if norm(b.c2) > 0.0 else b.c3)
-        c[0] = dot(b.c1, axis)
-        c[1] = 2.0 * dot(b.c2, axis)
-        c[2] = 3.0 * dot(b.c3, axis)
+            axis = unit.c1 if norm(unit.c1) > 0.0 else (unit.c2 if norm(unit.c2) > 0.0 else unit.c3)
+        c[0] = dot(unit.c1, axis)
+        c[1] = 2.0 * dot(unit.c2, axis)
+        c[2] = 3.0 * dot(unit.c3, axis)
         m = roots_in(c, 2, 0.0, 1.0, cuts)
         for i in range(m):
             if cuts[i] - ts[n - 1] > CUT_SEPARATION and 1.0 - cuts[i] > CUT_SEPARATION:
                 ts[n] = cuts[i]
                 n += 1
     else:
-        m = bezier_cuts(b, extrema, cuts)
+        m = bezier_cuts(&unit, extrema, cuts)
         for i in range(m + 1):
-            k = turn_cuts(b, ts[n - 1], cuts[i] if i < m else 1.0, max_turn, more)
+            k = turn_cuts(&unit, ts[n - 1], cuts[i] if i < m else 1.0, max_turn, more)
             for j in range(k):
                 if n < MAX_CUTS:
                     ts[n] = more[j]
@@ -281,9 +361,10 @@ cdef void bezier_pieces(
                 n += 1
     ts[n] = 1.0
     n += 1
+    n = merge_clusters(&unit, ts, n)
     cdef Vec start = b.p0, end, a1, a2, a3, d1, d2
     cdef double ta, tb, h, turn, mirror
-    cdef double noise = 64.0 * DBL_EPSILON * span_d
+    cdef double noise = 64.0 * DBL_EPSILON * size * span_d
     cdef Row row
     for i in range(n - 1):
         ta, tb = ts[i], ts[i + 1]
@@ -293,7 +374,7 @@ cdef void bezier_pieces(
         if norm(d1) <= noise:
             d1 = vec(0.0, 0.0)  # cut at a cusp or turning point: the speed there is 0
         a1 = vec(h * d1.x, h * d1.y)
-        d2 = vec(b.c2.x + 3.0 * ta * b.c3.x, b.c2.y + 3.0 * ta * b.c3.y)
+        d2 = bezier_half_second(b, ta)
         a2 = vec(h * h * d2.x, h * h * d2.y)
         a3 = vec(h * h * h * b.c3.x, h * h * h * b.c3.y)
         if end.x == start.x and end.y == start.y:
@@ -332,13 +413,12 @@ cdef void conic_pieces(
         # Vertices: multiples of π/2 strictly inside.
         q = a0 / (0.5 * M_PI)
         first = ceil(q) if direction > 0.0 else ceil(q) - 1.0
-        if first == q:
-            first += direction
         while n < 7:
             phis[n] = first * 0.5 * M_PI
-            if direction * (last_phi - phis[n]) <= 1e-12:
+            if direction * (last_phi - phis[n]) <= CUT_ANGLE:
                 break
-            n += 1
+            if direction * (phis[n] - a0) > CUT_ANGLE:
+                n += 1  # a vertex within a hair of the start is the start
             first += direction
     phis[n] = last_phi
     n += 1
@@ -410,12 +490,17 @@ def split(
                     b.c1 = vec(2.0 * (seg[X1] - start.x), 2.0 * (seg[Y1] - start.y))
                     b.c2 = vec(start.x - 2.0 * seg[X1] + end.x, start.y - 2.0 * seg[Y1] + end.y)
                     b.c3 = vec(0.0, 0.0)
+                    b.e1 = vec(2.0 * (end.x - seg[X1]), 2.0 * (end.y - seg[Y1]))
+                    b.e2 = b.c2
                 else:
                     b.c1 = vec(3.0 * (seg[X1] - start.x), 3.0 * (seg[Y1] - start.y))
                     b.c2 = vec(3.0 * (seg[X2] - 2.0 * seg[X1] + start.x),
                                3.0 * (seg[Y2] - 2.0 * seg[Y1] + start.y))
                     b.c3 = vec(end.x - 3.0 * seg[X2] + 3.0 * seg[X1] - start.x,
                                end.y - 3.0 * seg[Y2] + 3.0 * seg[Y1] - start.y)
+                    b.e1 = vec(3.0 * (end.x - seg[X2]), 3.0 * (end.y - seg[Y2]))
+                    b.e2 = vec(3.0 * (end.x - 2.0 * seg[X2] + seg[X1]),
+                               3.0 * (end.y - 2.0 * seg[Y2] + seg[Y1]))
                 bezier_pieces(&b, i, seg[COORDINATES], extrema, max_turn_rad, &rows)
             elif kind == CIRCULAR or kind == ELLIPTICAL:
                 if seg[SWEEP] != 0.0:
