@@ -433,7 +433,10 @@ def _gather(path: Path, done: _Fitted, tolerance: float, strategy: str) -> PathS
             strict=True,
         ))
     ]  # fmt: skip
-    (overall,) = _stats(table, np.array([0, len(table)]), np.array([lengths.sum()])).tolist()
+    if len(results) == 1:
+        overall = summaries[0].tolist()  # one subpath: its statistics are the path's
+    else:
+        (overall,) = _stats(table, np.array([0, len(table)]), lengths.sum(keepdims=True)).tolist()
     return PathSpline(tuple(results), SplineStats.of(overall, tolerance), tolerance, strategy)
 
 
