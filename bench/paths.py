@@ -43,12 +43,12 @@ sys.path.insert(0, str(FilePath(__file__).resolve().parent))
 
 from timing import paired_best
 
-from arcspline.geometry import COLUMN, GeometryError, Limits
+from arcspline.geometry import COLUMN, GeometryError, Limits, PathSpline, approximate_path
 from arcspline.geometry.curves.segments import Cubic, Path, Subpath
 from arcspline.geometry.curves.split import split
 from arcspline.geometry.fit import STRATEGIES
 from arcspline.geometry.measure import circle_deviations, line_deviations
-from arcspline.geometry.paths import PathSpline, approximate_path, segment_row
+from arcspline.geometry.segment_table import segment_row
 from arcspline.geometry.spline import Point
 
 SEED = 20260601

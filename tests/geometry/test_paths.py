@@ -24,7 +24,7 @@ import pytest
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
-from arcspline.geometry import GeometryError, Spiral
+from arcspline.geometry import GeometryError, PathSpline, Spiral, approximate_path
 from arcspline.geometry.curves.segments import (
     CircularArc,
     Cubic,
@@ -35,7 +35,6 @@ from arcspline.geometry.curves.segments import (
     Segment,
     Subpath,
 )
-from arcspline.geometry.paths import PathSpline, approximate_path
 from arcspline.geometry.spline import Point
 from arcspline.paths.svg_data import parse_path_data
 from arcspline.worker.jobs import path_segments

@@ -30,7 +30,7 @@ from arcspline.geometry.curves.segments import (
 from arcspline.geometry.curves.split import PIECE_FIELDS, split
 from arcspline.geometry.fit.batch import FRAME_FIELDS, PIECE_KINDS
 from arcspline.geometry.measure import points
-from arcspline.geometry.paths import segment_row
+from arcspline.geometry.segment_table import segment_row
 from arcspline.geometry.spline import Point
 
 EPS = float(np.finfo(np.float64).eps)

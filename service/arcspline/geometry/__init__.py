@@ -10,7 +10,8 @@ in docstrings refer to it.
 Layout: ``curves/`` (curve types, path segments, pieces and their cuts), ``fit/``
 (strategies, compiled), ``maths/`` (roots, polynomials, quadrature), ``deviation`` (the
 certificate), ``measure`` (pieces against lines and circles), ``spline.py`` (results),
-``paths.py`` (whole paths), ``limits.py``, ``errors.py``, ``approximate.py`` (the entry
+``segment_table.py``, ``paths.py`` and ``path_spline.py`` (whole paths: their input
+table, their approximation, its result), ``limits.py``, ``errors.py``, ``approximate.py`` (the entry
 points).
 """
 
@@ -20,7 +21,8 @@ from .curves.segments import CircularArc, Cubic, EllipticalArc, Line, Path, Quad
 from .errors import GeometryError
 from .fit import STRATEGIES, StrategyName
 from .limits import DEFAULT_LIMITS, Limits, min_tolerance
-from .paths import PathSpline, SubpathSpline, approximate_path
+from .path_spline import PathSpline, SubpathSpline
+from .paths import approximate_path
 from .spline import (
     COLUMN,
     ArcSegment,

@@ -47,7 +47,7 @@ def approximate_many(
     unaffected (each result is the one the curve gets alone, bit for bit)."""
     if len(curves) != len(tolerances):
         raise ValueError("curves and tolerances differ in length")
-    fit = _strategy(strategy)
+    fit = fit_of(strategy)
     tol = _tolerances(tolerances)
     frames = frame_table([c.frame for c in curves])
     blocks, where, stats, status, aux = fit(
@@ -65,7 +65,8 @@ def approximate_many(
     return results
 
 
-def _strategy(name: str) -> FitMany:
+def fit_of(name: str) -> FitMany:
+    """The fit of the strategy named ``name``; :class:`GeometryError` if there is none."""
     try:
         return STRATEGIES[name]
     except (KeyError, TypeError):

@@ -1,311 +1,35 @@
 """Paths of any segments approximated as one arc spline per subpath (docs/method.md §11).
 
-A path's segments are written to one table (``curves/split.pyx``'s ``SEGMENT_FIELDS``), cut
-into pieces of monotone curvature, fitted in one compiled loop under one segment budget for
-the whole path (``fit/batch.pyx``), and gathered back per subpath. Each subpath's result is an
-:class:`~arcspline.geometry.spline.ArcSpline` whose parameter ``u`` is the *piece parameter*
-``g = k + u_k`` (piece ``k``, local ``u_k``), paired with a :class:`SubpathCurve` that
-evaluates and measures the source in that parameter (what the G-code planner and the preview
-need); :meth:`SubpathSpline.sources` turns ``g`` into the input segment and its own
-parameter ``t``.
+A path's segments are written to one table (``segment_table.py``), cut into pieces of
+monotone curvature (``curves/split.pyx``), fitted in one compiled loop under one segment
+budget for the whole path (``fit/batch.pyx``), and gathered back per subpath
+(``path_spline.py``).
 """
 
 from __future__ import annotations
 
-import itertools
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
 from typing import NamedTuple
 
 import numpy as np
 import numpy.typing as npt
 
-from .curves.segments import CircularArc, Cubic, EllipticalArc, Line, Path, Quadratic, Segment
-from .curves.split import SEGMENT_FIELDS, SEGMENT_KINDS, split
+from .approximate import fit_of
+from .curves.segments import CircularArc, Path, Segment
+from .curves.split import split
 from .errors import GeometryError
-from .fit import MONOTONE_PIECES, STRATEGIES, FitMany, StrategyName
-from .fit.batch import FRAME_FIELDS, PIECE_KINDS, STATS_FIELDS, STATUS
+from .fit import MONOTONE_PIECES, FitMany, StrategyName
+from .fit.batch import FRAME_FIELDS, PIECE_KINDS, STATS_FIELDS, STATUS, tolerance_floor
 from .limits import DEFAULT_LIMITS, Limits
-from .measure import circle_deviations, line_deviations, points
+from .path_spline import IntArray, PathSpline, SubpathCurve, SubpathSpline
+from .segment_table import check, segment_table, where
 from .spline import COLUMN, ArcSpline, FloatArray, Point, SplineStats
 
-IntArray = npt.NDArray[np.int64]
-
-#: Coordinates and radii stay below this magnitude, so that squares and products of them stay
-#: finite in double precision (as for spirals).
-MAX_MAGNITUDE = 1e150
-#: A segment smaller than this (but not a point) would underflow in the squares of its size.
-MIN_SIZE = 1e-150
-
-_SEG = {name: j for j, name in enumerate(SEGMENT_FIELDS)}
 _FRAME = {name: j for j, name in enumerate(FRAME_FIELDS)}
 _STATS = {name: j for j, name in enumerate(STATS_FIELDS)}
 _STATUS_NAME = {code: name for name, code in STATUS.items()}
 _ARC_PIECE = PIECE_KINDS["arc"]
-
-
-@dataclass(frozen=True, slots=True)
-class Source:
-    """Where an output segment comes from: input segment ``segment`` of its subpath, over
-    its parameter range ``[t_start, t_end]``; its largest deviation is reached at
-    ``t_at_max_deviation``."""
-
-    segment: IntArray
-    t_start: FloatArray
-    t_end: FloatArray
-    t_at_max_deviation: FloatArray
-
-
-class SubpathCurve:
-    """A subpath's source in the piece parameter ``g ∈ [0, pieces]`` (the
-    :class:`~arcspline.geometry.curves.Curve` protocol): ``g = k + u`` is piece ``k`` at its
-    local ``u``."""
-
-    def __init__(
-        self, frames: FloatArray, start: Point, end: Point, coordinate_scale: float
-    ) -> None:
-        self._frames = frames
-        self._start, self._end = start, end
-        self._coordinate_scale = coordinate_scale
-
-    @property
-    def frame(self) -> tuple[float, ...]:
-        raise TypeError("a subpath has one frame per piece (see SubpathCurve.frames)")
-
-    @property
-    def frames(self) -> FloatArray:
-        return self._frames
-
-    @property
-    def domain(self) -> tuple[float, float]:
-        return (0.0, float(len(self._frames)))
-
-    @property
-    def start(self) -> Point:
-        return self._start
-
-    @property
-    def end_point(self) -> Point:
-        return self._end
-
-    @property
-    def chord(self) -> float:
-        return math.dist(self._start, self._end)
-
-    @property
-    def coordinate_scale(self) -> float:
-        return self._coordinate_scale
-
-    def _local(self, g: FloatArray) -> tuple[IntArray, FloatArray]:
-        last = len(self._frames) - 1
-        piece = np.clip(np.floor(g), 0, last).astype(np.int64)
-        return piece, g - piece
-
-    def eval(self, u: float | FloatArray) -> FloatArray:
-        g = np.asarray(u, dtype=np.float64)
-        piece, local = self._local(g.ravel())
-        return points(self._frames, piece, local).reshape((*g.shape, 2))
-
-    def _ranges(
-        self, u0: FloatArray, u1: FloatArray
-    ) -> tuple[IntArray, IntArray, FloatArray, FloatArray]:
-        """Each query ``[u0, u1]`` cut at piece boundaries: (query, piece, lo, hi) per part."""
-        first, _ = self._local(np.asarray(u0, dtype=np.float64))
-        last = np.maximum(first, np.ceil(np.asarray(u1, dtype=np.float64)).astype(np.int64) - 1)
-        last = np.minimum(last, len(self._frames) - 1)
-        counts = last - first + 1
-        query = np.repeat(np.arange(len(first)), counts)
-        piece = first[query] + (
-            np.arange(len(query)) - np.repeat(np.cumsum(counts) - counts, counts)
-        )
-        lo = np.clip(np.asarray(u0)[query] - piece, 0.0, 1.0)
-        hi = np.clip(np.asarray(u1)[query] - piece, 0.0, 1.0)
-        return query, piece, lo, hi
-
-    def line_deviations(
-        self, u0: FloatArray, u1: FloatArray, start: FloatArray, end: FloatArray
-    ) -> FloatArray:
-        query, piece, lo, hi = self._ranges(u0, u1)
-        parts = line_deviations(self._frames, piece, lo, hi, start[query], end[query])
-        out = np.zeros(len(u0))
-        np.maximum.at(out, query, parts)
-        return out
-
-    def circle_deviations(
-        self,
-        u0: FloatArray,
-        u1: FloatArray,
-        centre: FloatArray,
-        r_start: FloatArray,
-        r_end: FloatArray,
-    ) -> FloatArray:
-        query, piece, lo, hi = self._ranges(u0, u1)
-        parts = circle_deviations(
-            self._frames, piece, lo, hi, centre[query], r_start[query], r_end[query]
-        )
-        out = np.zeros(len(u0))
-        np.maximum.at(out, query, parts)
-        return out
-
-
-@dataclass(frozen=True, slots=True)
-class SubpathSpline:
-    """One subpath's arc spline (parameter: the piece parameter ``g``), its source curve
-    and, per output segment, which input segment it answers for."""
-
-    spline: ArcSpline
-    curve: SubpathCurve
-    closed: bool
-    pieces: FloatArray  # per piece: segment, t0, t1, half angle (split.PIECE_FIELDS)
-
-    def sources(self) -> Source:
-        """The input segment and its parameter ``t`` for every output segment."""
-        cols = self.spline.table
-        g0, g1 = cols[:, COLUMN["u_start"]], cols[:, COLUMN["u_end"]]
-        gm = cols[:, COLUMN["u_at_max_deviation"]]
-        segment, t0 = self._segment_t(g0, upper=False)
-        _, t1 = self._segment_t(g1, upper=True)
-        at_segment, tm = self._segment_t(gm, upper=False)
-        # A maximum at a piece boundary may read as the next segment's start: take the end
-        # of the row's own segment instead.
-        tm = np.where(at_segment == segment, tm, 1.0)
-        return Source(segment=segment, t_start=t0, t_end=t1, t_at_max_deviation=tm)
-
-    def _segment_t(self, g: FloatArray, *, upper: bool) -> tuple[IntArray, FloatArray]:
-        last = len(self.pieces) - 1
-        piece = np.clip(np.floor(g), 0, last).astype(np.int64)
-        if upper:  # an end at a piece boundary belongs to the piece before
-            piece = np.where((g == piece) & (piece > 0), piece - 1, piece)
-        u = g - piece
-        seg, t0, t1, half = (self.pieces[piece, j] for j in range(4))
-        with np.errstate(invalid="ignore", divide="ignore"):
-            conic = 0.5 + np.arctan(np.tan(0.5 * half) * (2.0 * u - 1.0)) / half
-        fraction = np.where(half > 0.0, conic, u)
-        # The ends of a piece are its segment's cut points exactly, so that rows tile.
-        t = np.where(u == 1.0, t1, np.where(u == 0.0, t0, t0 + (t1 - t0) * fraction))
-        return seg.astype(np.int64), t
-
-
-@dataclass(frozen=True, slots=True)
-class PathSpline:
-    """A path's approximation: one :class:`SubpathSpline` per subpath, the statistics over
-    all of them, the tolerance and the strategy."""
-
-    subpaths: tuple[SubpathSpline, ...]
-    stats: SplineStats
-    tolerance: float
-    strategy: str
-
-    @property
-    def segment_count(self) -> int:
-        return sum(len(s.spline) for s in self.subpaths)
-
-
-#: ``SEGMENT_FIELDS`` in the order :func:`segment_row` writes them.
-_ROW_ORDER = (
-    "kind", "x0", "y0", "x1", "y1", "x2", "y2", "x3", "y3", "cx", "cy", "rx", "ry",
-    "rotation_rad", "start_angle_rad", "sweep_rad", "coordinate_scale",
-)  # fmt: skip
-assert SEGMENT_FIELDS == _ROW_ORDER
-_KIND = {
-    Line: float(SEGMENT_KINDS["line"]),
-    Quadratic: float(SEGMENT_KINDS["quadratic"]),
-    Cubic: float(SEGMENT_KINDS["cubic"]),
-    CircularArc: float(SEGMENT_KINDS["arc"]),
-    EllipticalArc: float(SEGMENT_KINDS["elliptical_arc"]),
-}
-
-
-def segment_row(segment: Segment) -> tuple[float, ...]:
-    """A segment as a row of ``SEGMENT_FIELDS`` (its kind, points and arc parameters; the
-    coordinate scale is left 0 for :func:`segment_table`)."""
-    (x0, y0), (x3, y3) = segment.start, segment.end
-    kind = _KIND[type(segment)]
-    if isinstance(segment, Line):
-        return (kind, x0, y0, 0.0, 0.0, 0.0, 0.0, x3, y3, *_NO_ARC)
-    if isinstance(segment, Quadratic):
-        return (kind, x0, y0, *segment.control, 0.0, 0.0, x3, y3, *_NO_ARC)
-    if isinstance(segment, Cubic):
-        return (kind, x0, y0, *segment.control1, *segment.control2, x3, y3, *_NO_ARC)
-    if isinstance(segment, CircularArc):
-        rx = ry = segment.radius
-        rotation = 0.0
-    else:
-        rx, ry, rotation = segment.rx, segment.ry, segment.rotation_rad
-    return (
-        kind, x0, y0, 0.0, 0.0, 0.0, 0.0, x3, y3, *segment.center, rx, ry, rotation,
-        segment.start_angle_rad, segment.sweep_rad, 0.0,
-    )  # fmt: skip
-
-
-_NO_ARC = (0.0,) * 8
-
-
-def segment_table(segments: Sequence[Segment]) -> FloatArray:
-    """The segments as rows of ``SEGMENT_FIELDS``, with each one's coordinate scale: the
-    largest magnitude of its points (and of its arc's centre plus radius)."""
-    table = np.array([segment_row(s) for s in segments], dtype=np.float64)
-    with np.errstate(invalid="ignore"):
-        reach = np.maximum(table[:, _SEG["rx"]], table[:, _SEG["ry"]])
-        table[:, _SEG["coordinate_scale"]] = np.maximum.reduce(
-            [
-                np.abs(table[:, _SEG["x0"] : _SEG["y3"] + 1]).max(axis=1),
-                np.abs(table[:, _SEG["cx"]]) + reach,
-                np.abs(table[:, _SEG["cy"]]) + reach,
-            ]
-        )
-    return table
-
-
-def _check(table: FloatArray, owner: list[tuple[int, int]]) -> None:
-    """Numbers the kernels can hold: finite, below ``MAX_MAGNITUDE``; radii > 0; sweeps
-    within a full turn. Raises for the first segment that fails, naming it."""
-    kind = table[:, _SEG["kind"]]
-    arcs = kind >= SEGMENT_KINDS["arc"]
-    sweep = np.abs(table[:, _SEG["sweep_rad"]])
-    with np.errstate(invalid="ignore"):
-        bad_number = ~np.all(np.abs(table) < MAX_MAGNITUDE, axis=1)
-        bad_radius = arcs & ~((table[:, _SEG["rx"]] > 0.0) & (table[:, _SEG["ry"]] > 0.0))
-        bad_sweep = arcs & ~((sweep > 0.0) & (sweep < 2.0 * math.pi))
-    # Each segment starts where the one before it in its subpath ends, to the bit.
-    starts, ends = table[1:, _SEG["x0"] : _SEG["y0"] + 1], table[:-1, _SEG["x3"] : _SEG["y3"] + 1]
-    same_subpath = np.array([a[0] == b[0] for a, b in itertools.pairwise(owner)], dtype=bool)
-    broken = np.concatenate([[False], same_subpath & np.any(starts != ends, axis=1)])
-    size = _sizes(table)
-    tiny = (size > 0.0) & (size < MIN_SIZE)
-    for bad, why in (
-        (bad_number, f"has a number that is not finite or beyond ±{MAX_MAGNITUDE:g}"),
-        (tiny, f"is smaller than {MIN_SIZE:g} across, too small for double precision"),
-        (broken, "does not start where the segment before it ends"),
-        (bad_radius, "an arc's radii must be > 0"),
-        (bad_sweep, "an arc's sweep must be non-zero and less than a full turn"),
-    ):
-        if bad.any():
-            i, j = owner[int(np.argmax(bad))]
-            raise GeometryError(_where(i, j), why)
-
-
-def _sizes(table: FloatArray) -> FloatArray:
-    """Each segment's extent: its control points' largest offset from its start (a line's
-    length), or an arc's larger radius."""
-    kind = table[:, _SEG["kind"]]
-    start = table[:, _SEG["x0"] : _SEG["y0"] + 1]
-    used = {  # the control points each kind has, besides its start
-        "x1": kind == SEGMENT_KINDS["quadratic"],
-        "x2": kind == SEGMENT_KINDS["cubic"],
-        "x3": kind < SEGMENT_KINDS["arc"],
-    }
-    used["x1"] = used["x1"] | used["x2"]
-    size = np.where(
-        kind >= SEGMENT_KINDS["arc"], np.maximum(table[:, _SEG["rx"]], table[:, _SEG["ry"]]), 0.0
-    )
-    with np.errstate(invalid="ignore", over="ignore"):
-        for name, mask in used.items():
-            j = _SEG[name]
-            offset = np.abs(table[:, j : j + 2] - start).max(axis=1)
-            size = np.where(mask, np.maximum(size, offset), size)
-    return size
 
 
 def approximate_path(
@@ -320,7 +44,7 @@ def approximate_path(
     :class:`GeometryError` naming the subpath and segment for input the core cannot take, and
     for a tolerance it cannot meet there.
     """
-    fit = _strategy(strategy)
+    fit = fit_of(strategy)
     if not (isinstance(tolerance, int | float) and math.isfinite(tolerance) and tolerance > 0):
         raise GeometryError("tolerance", f"must be a finite number > 0, got {tolerance!r}")
     if not path.subpaths:
@@ -331,7 +55,7 @@ def approximate_path(
             raise GeometryError(f"path.subpaths[{i}]", "has no segments")
         owner += [(i, j) for j in range(len(sub.segments))]
     table = segment_table([segment for sub in path.subpaths for segment in sub.segments])
-    _check(table, owner)
+    check(table, owner)
     # A strategy that does not need monotone curvature gets fewer cuts; where that fails on
     # a piece (a sharp curvature peak inside it), the path is cut fully and fitted again.
     done = _fit(table, fit, float(tolerance), limits, MONOTONE_PIECES[strategy])
@@ -341,7 +65,7 @@ def approximate_path(
     if len(bad):
         k = int(bad[0])
         i, j = owner[int(done.pieces[k, 0])]
-        raise _refusal(int(done.status[k]), tolerance, _where(i, j), done.frames[k], limits)
+        raise _refusal(int(done.status[k]), tolerance, where(i, j), done.frames[k], limits)
     return _gather(path, done, float(tolerance), strategy)
 
 
@@ -503,26 +227,11 @@ def _stats(table: FloatArray, bounds: IntArray, curve_lengths: FloatArray) -> Fl
     return columns
 
 
-def _where(subpath: int, segment: int) -> str:
-    return f"path.subpaths[{subpath}].segments[{segment}]"
-
-
-def _strategy(name: str) -> FitMany:
-    try:
-        return STRATEGIES[name]
-    except (KeyError, TypeError):
-        raise GeometryError(
-            "strategy", f"unknown strategy {name!r}; choose one of {', '.join(STRATEGIES)}"
-        ) from None
-
-
 def _refusal(
     code: int, tolerance: float, where: str, frame: FloatArray, limits: Limits
 ) -> GeometryError:
     why = _STATUS_NAME[code]
     if why == "tolerance_floor":
-        from .fit.batch import tolerance_floor
-
         floor = tolerance_floor(
             float(frame[_FRAME["chord"]]),
             float(frame[_FRAME["coordinate_scale"]]),

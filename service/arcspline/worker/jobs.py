@@ -30,7 +30,8 @@ from arcspline.geometry import (
     approximate,
     approximate_many,
 )
-from arcspline.geometry.paths import PathSpline, SubpathSpline, approximate_path
+from arcspline.geometry.path_spline import PathSpline, SubpathSpline
+from arcspline.geometry.paths import approximate_path
 from arcspline.outputs import WRITERS, Part
 from arcspline.outputs.gcode import GcodeError
 from arcspline.paths import PathSpec

@@ -17,7 +17,7 @@ from typing import Any
 
 import pytest
 
-from arcspline.geometry.paths import PathSpline, approximate_path
+from arcspline.geometry import PathSpline, approximate_path
 from arcspline.outputs.gcode import GcodeOptions
 from arcspline.outputs.gcode.program import write_parts
 from arcspline.paths import parse_path_data
