@@ -11,8 +11,8 @@ Layout: ``curves/`` (curve types, path segments, pieces and their cuts), ``fit/`
 (strategies, compiled), ``maths/`` (roots, polynomials, quadrature), ``deviation`` (the
 certificate), ``measure`` (pieces against lines and circles), ``spline.py`` (results),
 ``segment_table.py``, ``paths.py`` and ``path_spline.py`` (whole paths: their input
-table, their approximation, its result), ``limits.py``, ``errors.py``, ``approximate.py`` (the entry
-points).
+table, their approximation, its result), ``limits.py``, ``errors.py``, ``approximate.py``
+(the entry points).
 """
 
 from .approximate import approximate, approximate_many
