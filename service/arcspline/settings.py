@@ -82,7 +82,7 @@ class Settings(BaseSettings):
         description="Most output segments for one path, all subpaths together (422 beyond).",
     )
     path_max_input_segments: PositiveInt = Field(
-        default=20_000, description="Most input segments in one path's SVG data (422 beyond)."
+        default=20_000, description="Most input segments in one path (422 beyond)."
     )
     min_relative_tolerance: PositiveFloat = Field(
         default=DEFAULT_LIMITS.min_relative_tolerance,

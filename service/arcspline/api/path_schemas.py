@@ -200,7 +200,8 @@ class PathRequest(RequestModel):
             tuple(
                 SubpathForm(_xy(sub.start), tuple(s.form() for s in sub.segments), sub.closed)
                 for sub in self.path.subpaths
-            )
+            ),
+            max_segments,
         )
 
 

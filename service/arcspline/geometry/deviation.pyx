@@ -51,12 +51,18 @@ cdef extern from *:
     /* An arc's centre is stored with an error of about eps·radius; this many ulps of the
        radius must fit in the tolerance (an error of at most 1e-4 of it). */
     #define ARCSPLINE_CENTRE_ULPS 1e4
+    /* Where the distance polynomial's Bernstein coefficients stand less than this far above
+       their rounding bound, its roots are refined by searching the gap itself. */
+    #define ARCSPLINE_WELL_CONDITIONED 1e9
     """
     const double CENTRE_ULPS "ARCSPLINE_CENTRE_ULPS"
+    const double WELL_CONDITIONED "ARCSPLINE_WELL_CONDITIONED"
 
-# Newton steps before the first convergence test, from a secant start.
+# Newton steps before the first convergence test, from a secant start; golden-section steps
+# of a refinement (0.618^60 of a tenth of the piece: below rounding).
 cdef enum:
     FIXED_ITERATIONS = 4
+    REFINE_STEPS = 60
 
 
 cdef inline void relative(const Piece* p, Vec j, double* px, double* py) noexcept nogil:
@@ -135,6 +141,29 @@ cdef inline double radial(
     return fabs(top) / (sqrt(square) + 1.0)
 
 
+cdef inline (double, double) refine(
+    const Piece* p, Vec j, double nx, double ny, double kappa, double u, double lo, double hi
+) noexcept nogil:
+    """The largest :func:`radial` within a tenth of the piece around ``u``, by golden-section
+    search (the gap is unimodal there), and where it is."""
+    cdef double width = 0.1 * (hi - lo)
+    cdef double a = max(lo, u - width), b = min(hi, u + width)
+    cdef double golden = 0.6180339887498949
+    cdef double x1 = b - golden * (b - a), x2 = a + golden * (b - a)
+    cdef double f1 = radial(p, j, nx, ny, kappa, x1), f2 = radial(p, j, nx, ny, kappa, x2)
+    cdef int _k
+    for _k in range(REFINE_STEPS):
+        if f1 < f2:
+            a, x1, f1 = x1, x2, f2
+            x2 = a + golden * (b - a)
+            f2 = radial(p, j, nx, ny, kappa, x2)
+        else:
+            b, x2, f2 = x2, x1, f1
+            x1 = b - golden * (b - a)
+            f1 = radial(p, j, nx, ny, kappa, x1)
+    return (f1, x1) if f1 >= f2 else (f2, x2)
+
+
 cdef Peak arc_deviation(
     const Piece* p, Vec j, double tx, double ty, double kappa, Vec e, double lo, double hi,
     double tolerance
@@ -179,11 +208,12 @@ cdef Peak arc_deviation(
     # G1 chain through a point of the curve), and h has a root at that end.
     cdef Vec at_lo = point(p, lo), at_hi = point(p, hi)
     cdef double points[MAX_POINTS]
+    cdef double conditioning
     cdef int n = critical_points(
         h, MAX_COEFFS - 1, lo, hi, points, at_lo.x == j.x and at_lo.y == j.y,
-        at_hi.x == e.x and at_hi.y == e.y,
+        at_hi.x == e.x and at_hi.y == e.y, &conditioning,
     )
-    cdef double value
+    cdef double value, u
     peak.value = -INFINITY
     for i in range(n):
         value = radial(p, j, nx, ny, kappa, points[i])
@@ -192,6 +222,14 @@ cdef Peak arc_deviation(
             return peak
         if value > peak.value:
             peak.value, peak.u = value, points[i]
+    if conditioning < WELL_CONDITIONED:
+        # The polynomial stands barely above its rounding on this short or flat piece (the
+        # tip of a very thin ellipse): its roots can sit off the maxima they stand for.
+        # Search each interior candidate's neighbourhood for the largest gap itself.
+        for i in range(1, n - 1):
+            value, u = refine(p, j, nx, ny, kappa, points[i], lo, hi)
+            if value > peak.value:
+                peak.value, peak.u = value, u
     return peak
 
 

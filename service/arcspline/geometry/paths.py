@@ -180,7 +180,9 @@ def _merge_circular(
     # Keep every row but the second and later rows of an arc segment.
     later = is_arc_piece & np.concatenate([[False], segment[1:] == segment[:-1]])
     keep = ~later
-    for r in np.flatnonzero(is_arc_piece & keep).tolist():
+    # A circular arc flatter than the assembly's flat-arc limit came back as its chord (one
+    # row, a line): it stays one.
+    for r in np.flatnonzero(is_arc_piece & keep & (table[:, COLUMN["is_arc"]] != 0.0)).tolist():
         arc = segments[int(segment[r])]
         assert isinstance(arc, CircularArc)
         last = r

@@ -20,6 +20,10 @@ from .spline import FloatArray
 MAX_MAGNITUDE = 1e150
 #: A segment smaller than this (but not a point) would underflow in the squares of its size.
 MIN_SIZE = 1e-150
+#: An arc's stored end points must lie this close (relative to its coordinates) to the points
+#: its centre, radii and angles give: an arc is emitted as itself, or cut at its angles from
+#: those ends, so they must agree (rounding of SVG's endpoint conversion is ~1e-15).
+ARC_RTOL = 1e-9
 
 _SEG = {name: j for j, name in enumerate(SEGMENT_FIELDS)}
 
@@ -95,16 +99,36 @@ def check(table: FloatArray, owner: list[tuple[int, int]]) -> None:
     broken = np.concatenate([[False], same_subpath & np.any(starts != ends, axis=1)])
     size = _sizes(table)
     tiny = (size > 0.0) & (size < MIN_SIZE)
+    off = _off_the_arc(table) > ARC_RTOL * table[:, _SEG["coordinate_scale"]]
     for bad, why in (
         (bad_number, f"has a number that is not finite or beyond ±{MAX_MAGNITUDE:g}"),
         (tiny, f"is smaller than {MIN_SIZE:g} across, too small for double precision"),
         (broken, "does not start where the segment before it ends"),
         (bad_radius, "an arc's radii must be > 0"),
         (bad_sweep, "an arc's sweep must be non-zero and less than a full turn"),
+        (arcs & off, "an arc's end points are not where its centre, radii and angles put them"),
     ):
         if bad.any():
             i, j = owner[int(np.argmax(bad))]
             raise GeometryError(where(i, j), why)
+
+
+def _off_the_arc(table: FloatArray) -> FloatArray:
+    """How far an arc's stored start and end lie from the points its centre, radii, rotation
+    and angles give (0 for other segments)."""
+    t = {name: table[:, _SEG[name]] for name in _ROW_ORDER}
+    cos_r, sin_r = np.cos(t["rotation_rad"]), np.sin(t["rotation_rad"])
+    worst = np.zeros(len(table))
+    with np.errstate(invalid="ignore", over="ignore"):
+        for angle, (x, y) in (
+            (t["start_angle_rad"], ("x0", "y0")),
+            (t["start_angle_rad"] + t["sweep_rad"], ("x3", "y3")),
+        ):
+            ex, ey = t["rx"] * np.cos(angle), t["ry"] * np.sin(angle)
+            px = t["cx"] + cos_r * ex - sin_r * ey
+            py = t["cy"] + sin_r * ex + cos_r * ey
+            worst = np.maximum(worst, np.hypot(px - t[x], py - t[y]))
+    return np.where(table[:, _SEG["kind"]] >= SEGMENT_KINDS["arc"], worst, 0.0)
 
 
 def _sizes(table: FloatArray) -> FloatArray:

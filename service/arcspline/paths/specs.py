@@ -90,8 +90,17 @@ class PathFromSegments(NamedTuple):
     """The explicit JSON form."""
 
     subpaths: tuple[SubpathForm, ...]
+    max_segments: int | None = None
 
     def build(self) -> Path:
+        count = sum(len(sub.segments) for sub in self.subpaths)
+        if self.max_segments is not None and count > self.max_segments:
+            raise GeometryError(
+                "path",
+                f"has {count} segments; at most {self.max_segments} are accepted",
+                kind="segment_limit",
+                limit=float(self.max_segments),
+            )
         return Path(tuple(_subpath(i, sub) for i, sub in enumerate(self.subpaths)))
 
 
@@ -100,7 +109,7 @@ def _subpath(i: int, form: SubpathForm) -> Subpath:
     segments: list[Segment] = []
     for j, seg in enumerate(form.segments):
         made = _segment(current, seg, f"path.subpaths[{i}].segments[{j}]")
-        if made is not None:
+        if made is not None:  # an elliptical arc between equal points is omitted, as in SVG
             segments.append(made)
             current = made.end
     if form.closed and current != Point(*form.start):

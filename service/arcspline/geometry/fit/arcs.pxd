@@ -15,7 +15,7 @@ from arcspline.geometry.curves.piece cimport Piece
 cdef struct Arc:
     # From (x0, y0) to (x1, y1), leaving with the unit tangent (tx, ty), radius > 0 (inf for
     # a straight piece) and the signed angle it turns through (anticlockwise positive). It
-    # answers for the spiral over [u0, u1], from which it deviates by at most dev (exactly
+    # answers for the piece over [u0, u1], from which it deviates by at most dev (exactly
     # so, reached at u_dev).
     double x0
     double y0
@@ -31,7 +31,7 @@ cdef struct Arc:
     double u_dev
 
 
-# Why a spiral got no arc spline (0: it did); ``batch.STATUS`` names them for Python.
+# Why a piece got no arc spline (0: it did); ``batch.STATUS`` names them for Python.
 cdef enum Status:
     OK = 0
     SEGMENT_LIMIT = 1    # more segments than the limit

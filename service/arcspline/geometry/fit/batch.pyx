@@ -42,7 +42,7 @@ cdef extern from *:
     """
     /* World coordinates are B0 + a·R·p: each carries a rounding error of a few ulps of the
        largest coordinate. The kernels aim below the tolerance by this many ulps of the
-       spiral's coordinate scale (plus chord), so the guarantee holds for the numbers handed
+       piece's coordinate scale (plus chord), so the guarantee holds for the numbers handed
        out; the smallest tolerance accepted is four of these margins. */
     #define ARCSPLINE_ROUNDING_MARGIN_ULPS 32.0
     /* An arc's centre and radius round by a few ulps of |C| + r; arcs for which this many
@@ -109,7 +109,7 @@ cdef struct Frame:
     double sin_phi
     double scale
     double mirror
-    Vec end       # the spiral's stored end point B3, where u = 1 maps
+    Vec end       # the piece's stored end point, where u = 1 maps
 
 
 cdef inline Vec world_vector(const Frame* f, double x, double y) noexcept nogil:
@@ -139,7 +139,7 @@ cdef inline double floor_of(
 
 
 def tolerance_floor(double chord, double coordinate_scale, double min_relative_tolerance):
-    """The smallest tolerance accepted for a spiral of this chord and coordinate scale: the
+    """The smallest tolerance accepted for a piece of this chord and coordinate scale: the
     larger of ``min_relative_tolerance × chord`` and four rounding margins, so that at least
     three quarters of the tolerance is left for the approximation itself."""
     return floor_of(chord, coordinate_scale, min_relative_tolerance)
@@ -148,7 +148,7 @@ def tolerance_floor(double chord, double coordinate_scale, double min_relative_t
 cdef inline double placement_error(const double* row) noexcept nogil:
     """How far rounding has moved an arc, measured: the larger of ``|‖S − C‖ − r|`` at its
     start and end, in extended precision. Centre and radius are doubles, each off by ulps of
-    its own size, which for the huge radii of nearly straight spirals can exceed a tight
+    its own size, which for the huge radii of nearly straight pieces can exceed a tight
     tolerance; the end points lie where the method put them, so the gap shows the error."""
     cdef long double cx = row[F_CENTER_X], cy = row[F_CENTER_Y], r = row[F_RADIUS]
     cdef long double dx = row[F_START_X] - cx, dy = row[F_START_Y] - cy
@@ -315,9 +315,9 @@ cdef class Block:
         pass
 
 
-#: Rows of the first block: enough for one spiral of a few dozen arcs, or for a batch at
-#: this many per spiral (memory is only touched where rows are written). Later blocks double
-#: up to ``MAX_BLOCK_ROWS`` (or hold one spiral's rows, if more).
+#: Rows of the first block: enough for one piece of a few dozen arcs, or for a batch at
+#: this many per piece (memory is only touched where rows are written). Later blocks double
+#: up to ``MAX_BLOCK_ROWS`` (or hold one piece's rows, if more).
 cdef enum:
     ROWS_PER_SPIRAL = 32
     MAX_BLOCK_ROWS = 1 << 16

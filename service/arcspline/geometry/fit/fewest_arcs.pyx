@@ -718,6 +718,6 @@ MONOTONE_PIECES = False
 def fit_many(
     frames, tolerances, int max_segments, double min_relative_tolerance, bint shared=False
 ):
-    """Strategy ``fewest-arcs`` for a batch of spirals (``fit/batch.pyx`` documents the table
+    """Strategy ``fewest-arcs`` for a batch of pieces (``fit/batch.pyx`` documents the table
     and results)."""
     return batch.run(frames, tolerances, max_segments, min_relative_tolerance, fewest, shared)

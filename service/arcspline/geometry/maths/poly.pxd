@@ -20,7 +20,7 @@ derivative at a time yields every root of ``p`` in ``[lo, hi]`` — isolated, th
 """
 
 from libc.float cimport DBL_EPSILON
-from libc.math cimport fabs
+from libc.math cimport INFINITY, fabs
 
 from arcspline.geometry.maths.roots cimport horner, polynomial_root
 
@@ -172,12 +172,17 @@ cdef inline int deflate_end(double* c, int degree, double x) noexcept nogil:
 
 cdef inline int critical_points(
     const double* c, int degree, double lo, double hi, double* points, bint touch_lo,
-    bint touch_hi
+    bint touch_hi, double* conditioning=NULL
 ) noexcept nogil:
     """``lo``, ``hi`` and every root in ``[lo, hi]`` of ``c`` (and, where the cascade runs,
     of its derivatives), sorted into ``points`` (at most ``MAX_POINTS``); their number.
     ``touch_lo``/``touch_hi`` say that ``c`` has a root at that end in exact arithmetic (an
-    arc tangent to the curve there): it is divided out first (:func:`deflate_end`)."""
+    arc tangent to the curve there): it is divided out first (:func:`deflate_end`). If
+    ``conditioning`` is given, it receives how far the polynomial stands above its rounding
+    on the interval: its largest Bernstein coefficient over their error bound (``inf`` where
+    there is nothing to find)."""
+    if conditioning != NULL:
+        conditioning[0] = INFINITY
     cdef double levels[MAX_COEFFS][MAX_COEFFS]
     cdef double roots[MAX_COEFFS]
     cdef int j
@@ -197,7 +202,13 @@ cdef inline int critical_points(
     c = levels[0]
     cdef double bern[MAX_COEFFS]
     bernstein(c, degree, lo, hi, bern)
-    cdef int changes = sign_changes(bern, degree + 1, bernstein_error(c, degree, lo, hi))
+    cdef double error = bernstein_error(c, degree, lo, hi)
+    cdef int changes = sign_changes(bern, degree + 1, error)
+    cdef double largest = 0.0
+    if conditioning != NULL:
+        for j in range(degree + 1):
+            largest = max(largest, fabs(bern[j]))
+        conditioning[0] = largest / error if error > 0.0 else INFINITY
     if changes == 0:
         return n
     if changes == 1:
