@@ -2,27 +2,22 @@
 
 from __future__ import annotations
 
-import itertools
 from typing import Any
 
-import orjson
 from fastapi import APIRouter, Request
-from pydantic import TypeAdapter, ValidationError
+from pydantic import TypeAdapter
 
-from arcspline.worker.jobs import Encoded, Job, JobResult, approximate_chunk
-from arcspline.worker.pool import PoolError, chunk_sizes
+from arcspline.worker.jobs import Encoded, Job, approximate_chunk
 
+from .batch import run_batch
 from .errors import (
+    Loc,
     ProblemError,
     RawJSONResponse,
-    pool_problem,
-    problem,
-    problem_kind,
     problem_responses,
-    validation_problem,
 )
 from .routing import LeanRoute
-from .runtime import Runtime, runtime_of
+from .runtime import runtime_of
 from .schemas import ApproximateRequest, ApproximateResponse, BatchRequest, BatchResponse
 from .translate import job_problem, to_job
 
@@ -65,64 +60,12 @@ async def approximate_batch(body: BatchRequest, request: Request) -> RawJSONResp
     """
     runtime = runtime_of(request)
     settings = runtime.settings
-    if len(body.jobs) > settings.batch_max_jobs:
-        detail = (
-            f"the batch has {len(body.jobs)} jobs; at most {settings.batch_max_jobs} are accepted"
-        )
-        raise ProblemError(problem("too_many_jobs", detail, limit=settings.batch_max_jobs))
 
-    entries: list[Encoded | dict[str, Any] | None] = []
-    pending: list[tuple[int, Job]] = []
-    for i, raw in enumerate(body.jobs):
-        prefix: list[str | int] = ["body", "jobs", i]
-        try:
-            job = _JOB_ADAPTER.validate_python(raw)
-            pending.append((i, to_job(job, prefix)))
-            entries.append(None)  # until the worker answers
-        except ValidationError as error:
-            entries.append(validation_problem(error.errors(), prefix))
-        except ProblemError as error:
-            entries.append(error.problem)
+    def make_job(raw: Any, prefix: Loc) -> Job:
+        return to_job(_JOB_ADAPTER.validate_python(raw), prefix)
 
-    pool = runtime.running_pool()
-    sizes = chunk_sizes(len(pending), min(pool.size, pool.capacity), settings.batch_chunk_min_jobs)
-    bounds = [0, *itertools.accumulate(sizes)]
-    chunks = [pending[begin:end] for begin, end in itertools.pairwise(bounds)]
-    calls = [(approximate_chunk, ([job for _, job in chunk], settings.limits)) for chunk in chunks]
-    outcomes = await pool.run_many(calls, time_limit_s=settings.batch_time_limit_s)
-
-    for chunk, outcome in zip(chunks, outcomes, strict=True):
-        if isinstance(outcome, PoolError):
-            failure, _ = pool_problem(outcome)
-            for i, _job in chunk:
-                entries[i] = failure
-            continue
-        results: list[JobResult] = outcome
-        for (i, _job), result in zip(chunk, results, strict=True):
-            entries[i] = (
-                result if isinstance(result, Encoded) else job_problem(result, ["body", "jobs", i])
-            )
-    return RawJSONResponse(batch_body(entries, runtime, "batch"))
-
-
-def batch_body(
-    entries: list[Encoded | dict[str, Any] | None], runtime: Runtime, endpoint: str
-) -> bytes:
-    """``{"results": [...]}`` from the workers' bytes, joined once (never re-parsed)."""
-    metrics = runtime.metrics
-    parts: list[bytes] = [b'{"results":[']
-    arcs = lines = ok = 0
-    for i, entry in enumerate(entries):
-        if i:
-            parts.append(b",")
-        assert entry is not None, "every job has an answer"
-        if isinstance(entry, Encoded):
-            parts += (b'{"status":"ok","result":', entry.body, b"}")
-            arcs, lines, ok = arcs + entry.arc_count, lines + entry.line_count, ok + 1
-        else:
-            parts += (b'{"status":"error","error":', orjson.dumps(entry), b"}")
-            metrics.job_error(endpoint)
-            metrics.error(problem_kind(entry))
-    parts.append(b"]}")
-    metrics.job_ok(endpoint, arcs, lines, ok)
-    return b"".join(parts)
+    body_bytes = await run_batch(
+        runtime, body.jobs, make_job, approximate_chunk, settings.limits,
+        settings.batch_chunk_min_jobs, "batch", "spiral",
+    )  # fmt: skip
+    return RawJSONResponse(body_bytes)

@@ -3,59 +3,36 @@ paths (SVG path data or the JSON form), one arc spline per subpath, one program 
 
 from __future__ import annotations
 
-import itertools
 from typing import Any
 
 from fastapi import APIRouter, Request
-from pydantic import TypeAdapter, ValidationError
+from pydantic import TypeAdapter
 
-from arcspline.outputs.gcode import GcodeError, GcodeOptions
 from arcspline.worker.jobs import (
     Document,
     Encoded,
-    JobResult,
-    Output,
     PathJob,
     approximate_path_chunk,
     approximate_path_one,
     render,
 )
-from arcspline.worker.pool import PoolError, chunk_sizes
 
-from .approximate import batch_body
+from .batch import run_batch
 from .errors import (
     Loc,
     ProblemError,
     RawJSONResponse,
-    gcode_problem,
-    pool_problem,
-    problem,
     problem_responses,
-    validation_problem,
 )
 from .path_schemas import PathBatchRequest, PathBatchResponse, PathRequest, PathResponse
 from .preview import SVGResponse, svg_responses
 from .routing import LeanRoute
 from .runtime import runtime_of
-from .translate import job_problem
+from .translate import job_problem, to_path_job
 
 router = APIRouter(tags=["paths"], route_class=LeanRoute)
 
 _JOB_ADAPTER: TypeAdapter[PathRequest] = TypeAdapter(PathRequest)
-
-
-def to_path_job(
-    request: PathRequest, prefix: Loc, max_segments: int, outputs: tuple[Output, ...] | None = None
-) -> PathJob:
-    """The worker's job for ``request`` (G-code options the writer refuses raise a 422)."""
-    if outputs is None:
-        outputs = ()
-        if request.gcode is not None:
-            try:
-                outputs = (("gcode", GcodeOptions(**request.gcode.model_dump())),)
-            except GcodeError as error:
-                raise ProblemError(gcode_problem(error, prefix)) from None
-    return PathJob(request.spec(max_segments), request.tolerance, request.strategy, outputs)
 
 
 @router.post(
@@ -93,46 +70,18 @@ async def approximate_paths_batch(body: PathBatchRequest, request: Request) -> R
     ``error``; a bad job spoils nothing else."""
     runtime = runtime_of(request)
     settings = runtime.settings
-    if len(body.jobs) > settings.batch_max_jobs:
-        detail = (
-            f"the batch has {len(body.jobs)} jobs; at most {settings.batch_max_jobs} are accepted"
+
+    def make_job(raw: Any, prefix: Loc) -> PathJob:
+        return to_path_job(
+            _JOB_ADAPTER.validate_python(raw), prefix, settings.path_max_input_segments
         )
-        raise ProblemError(problem("too_many_jobs", detail, limit=settings.batch_max_jobs))
-    entries: list[Encoded | dict[str, Any] | None] = []
-    pending: list[tuple[int, PathJob]] = []
-    for i, raw in enumerate(body.jobs):
-        prefix: Loc = ["body", "jobs", i]
-        try:
-            job = _JOB_ADAPTER.validate_python(raw)
-            pending.append((i, to_path_job(job, prefix, settings.path_max_input_segments)))
-            entries.append(None)
-        except ValidationError as error:
-            entries.append(validation_problem(error.errors(), prefix))
-        except ProblemError as error:
-            entries.append(error.problem)
-    pool = runtime.running_pool()
-    sizes = chunk_sizes(len(pending), min(pool.size, pool.capacity), 1)
-    bounds = [0, *itertools.accumulate(sizes)]
-    chunks = [pending[begin:end] for begin, end in itertools.pairwise(bounds)]
-    calls = [
-        (approximate_path_chunk, ([job for _, job in chunk], settings.path_limits))
-        for chunk in chunks
-    ]
-    outcomes = await pool.run_many(calls, time_limit_s=settings.batch_time_limit_s)
-    for chunk, outcome in zip(chunks, outcomes, strict=True):
-        if isinstance(outcome, PoolError):
-            failure, _ = pool_problem(outcome)
-            for i, _job in chunk:
-                entries[i] = failure
-            continue
-        results: list[JobResult] = outcome
-        for (i, _job), result in zip(chunk, results, strict=True):
-            entries[i] = (
-                result
-                if isinstance(result, Encoded)
-                else job_problem(result, ["body", "jobs", i], "path")
-            )
-    return RawJSONResponse(batch_body(entries, runtime, "paths_batch"))
+
+    # A path is one compiled loop already: each chunk a job, as the pool allows.
+    body_bytes = await run_batch(
+        runtime, body.jobs, make_job, approximate_path_chunk, settings.path_limits, 1,
+        "paths_batch", "path",
+    )  # fmt: skip
+    return RawJSONResponse(body_bytes)
 
 
 @router.post(
