@@ -4,69 +4,22 @@ from __future__ import annotations
 
 import copy
 import math
-from typing import Any, NamedTuple
+from typing import Any
 
 import numpy as np
 import pytest
 
+# The real value types; the oracle only reads their fields.
+from arcspline.geometry.curves.segments import (
+    CircularArc,
+    Cubic,
+    EllipticalArc,
+    Line,
+    Path,
+    Quadratic,
+    Subpath,
+)
 from tests.support import path_oracle as po
-
-try:  # The real value types; the oracle only reads their fields.
-    from arcspline.geometry.curves.segments import (
-        CircularArc,
-        Cubic,
-        EllipticalArc,
-        Line,
-        Path,
-        Quadratic,
-        Subpath,
-    )
-except Exception:  # The package does not import (e.g. mid-rewrite): the same fields here.
-
-    class Point(NamedTuple):  # type: ignore[no-redef]
-        x: float
-        y: float
-
-    class Line(NamedTuple):  # type: ignore[no-redef]
-        start: Point
-        end: Point
-
-    class Quadratic(NamedTuple):  # type: ignore[no-redef]
-        start: Point
-        control: Point
-        end: Point
-
-    class Cubic(NamedTuple):  # type: ignore[no-redef]
-        start: Point
-        control1: Point
-        control2: Point
-        end: Point
-
-    class CircularArc(NamedTuple):  # type: ignore[no-redef]
-        start: Point
-        end: Point
-        center: Point
-        radius: float
-        start_angle_rad: float
-        sweep_rad: float
-
-    class EllipticalArc(NamedTuple):  # type: ignore[no-redef]
-        start: Point
-        end: Point
-        center: Point
-        rx: float
-        ry: float
-        rotation_rad: float
-        start_angle_rad: float
-        sweep_rad: float
-
-    class Subpath(NamedTuple):  # type: ignore[no-redef]
-        segments: tuple[Any, ...]
-        closed: bool = False
-
-    class Path(NamedTuple):  # type: ignore[no-redef]
-        subpaths: tuple[Subpath, ...]
-
 
 HALF_PI = math.pi / 2
 
