@@ -31,8 +31,10 @@ from libc.math cimport INFINITY, NAN, cos, fabs, isfinite, sin, sqrt
 
 from arcspline.geometry.curves.piece cimport (
     Piece,
+    add_weighted_dot,
     direction,
     point,
+    relative_numerators,
     spiral_piece,
     tangent_numerators,
 )
@@ -65,16 +67,6 @@ cdef enum:
     REFINE_STEPS = 60
 
 
-cdef inline void relative(const Piece* p, Vec j, double* px, double* py) noexcept nogil:
-    """The coefficients (4 each) of ``X − J·W``: ``W·(Q − J)``."""
-    cdef int i
-    for i in range(4):
-        px[i], py[i] = p.x[i], p.y[i]
-    for i in range(3):
-        px[i] -= j.x * p.w[i]
-        py[i] -= j.y * p.w[i]
-
-
 cdef double joint_split(const Piece* p, Vec joint, double tx, double ty) noexcept nogil:
     """The ``u ∈ [0, 1]`` where the piece crosses the normal line at ``joint`` (unit tangent
     ``(tx, ty)``); NaN if it does not. ``f(u) = (Q(u) − J)·T`` has the sign of the cubic
@@ -84,7 +76,7 @@ cdef double joint_split(const Piece* p, Vec joint, double tx, double ty) noexcep
     cdef double px[4]
     cdef double py[4]
     cdef double c[4]
-    relative(p, joint, px, py)
+    relative_numerators(p, joint, px, py)
     cdef int i
     for i in range(4):
         c[i] = px[i] * tx + py[i] * ty
@@ -111,11 +103,7 @@ cdef inline bint is_graph(
     # κ·(X − J·W)×D + W·(T·D)
     add_product(kappa, px, 3, dy, 4, w)
     add_product(-kappa, py, 3, dx, 4, w)
-    for i in range(5):
-        w[i] += tx * dx[i] + ty * dy[i]
-        if p.rational:
-            w[i + 1] += p.w[1] * (tx * dx[i] + ty * dy[i])
-            w[i + 2] += p.w[2] * (tx * dx[i] + ty * dy[i])
+    add_weighted_dot(p, tx, ty, dx, dy, w)
     if not (hi > lo and positive_on(w, MAX_COEFFS - 1, lo, hi)):
         return False
     cdef double ex = kappa * (e.x - j.x) - nx, ey = kappa * (e.y - j.y) - ny
@@ -187,7 +175,7 @@ cdef Peak arc_deviation(
     cdef double py[4]
     cdef double dx[5]
     cdef double dy[5]
-    relative(p, j, px, py)
+    relative_numerators(p, j, px, py)
     tangent_numerators(p, dx, dy)
     if not is_graph(p, j, tx, ty, kappa, e, lo, hi, px, py, dx, dy):
         return peak
@@ -199,11 +187,7 @@ cdef Peak arc_deviation(
     # κ·(X − J·W)·D − W·(N·D)
     add_product(kappa, px, 3, dx, 4, h)
     add_product(kappa, py, 3, dy, 4, h)
-    for i in range(5):
-        h[i] -= nx * dx[i] + ny * dy[i]
-        if p.rational:
-            h[i + 1] -= p.w[1] * (nx * dx[i] + ny * dy[i])
-            h[i + 2] -= p.w[2] * (nx * dx[i] + ny * dy[i])
+    add_weighted_dot(p, -nx, -ny, dx, dy, h)
     # Where the arc starts (ends) on the piece's first (last) point it is tangent there (a
     # G1 chain through a point of the curve), and h has a root at that end.
     cdef Vec at_lo = point(p, lo), at_hi = point(p, hi)

@@ -13,7 +13,12 @@ from libc.math cimport fabs, sqrt
 
 import numpy as np
 
-from arcspline.geometry.curves.piece cimport Piece, point, tangent_numerators
+from arcspline.geometry.curves.piece cimport (
+    Piece,
+    point,
+    relative_numerators,
+    tangent_numerators,
+)
 from arcspline.geometry.deviation cimport line_deviation
 from arcspline.geometry.maths.poly cimport MAX_COEFFS, MAX_POINTS, add_product, critical_points
 from arcspline.geometry.maths.vec cimport Vec, vec
@@ -62,11 +67,7 @@ cdef double circle_distance(
     cdef double dy[5]
     cdef double h[MAX_COEFFS]
     cdef int i
-    for i in range(4):
-        px[i], py[i] = p.x[i], p.y[i]
-    for i in range(3):
-        px[i] -= c.x * p.w[i]
-        py[i] -= c.y * p.w[i]
+    relative_numerators(p, c, px, py)
     tangent_numerators(p, dx, dy)
     for i in range(MAX_COEFFS):
         h[i] = 0.0

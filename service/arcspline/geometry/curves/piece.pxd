@@ -71,6 +71,35 @@ cdef inline void tangent_numerators(const Piece* p, double* dx, double* dy) noex
             dy[i - 1 + j] += i * p.y[i] * p.w[j] - j * p.w[j] * p.y[i]
 
 
+cdef inline void relative_numerators(
+    const Piece* p, Vec j, double* px, double* py
+) noexcept nogil:
+    """The coefficients (4 each, ascending) of ``X − J·W``: ``W·(Q − J)``."""
+    cdef int i
+    for i in range(4):
+        px[i], py[i] = p.x[i], p.y[i]
+    for i in range(3):
+        px[i] -= j.x * p.w[i]
+        py[i] -= j.y * p.w[i]
+
+
+cdef inline void add_weighted_dot(
+    const Piece* p, double vx, double vy, const double* dx, const double* dy, double* out
+) noexcept nogil:
+    """``out += W·(V·D)`` for ``D`` of :func:`tangent_numerators` (5 coefficients each)."""
+    cdef double c
+    cdef int i
+    for i in range(5):
+        out[i] += vx * dx[i] + vy * dy[i]
+    if not p.rational:
+        return
+    cdef double w1 = p.w[1], w2 = p.w[2]
+    for i in range(5):
+        c = vx * dx[i] + vy * dy[i]
+        out[i + 1] += w1 * c
+        out[i + 2] += w2 * c
+
+
 cdef inline Vec numerator(const Piece* p, double u) noexcept nogil:
     """``(X(u), Y(u))``."""
     return vec(u * (p.x[1] + u * (p.x[2] + u * p.x[3])), u * (p.y[1] + u * (p.y[2] + u * p.y[3])))
