@@ -28,6 +28,7 @@ cdef enum:
     # deep (2^-40 of the piece; pieces are monotone in curvature, so few panels are needed).
     MAX_LENGTH_DEPTH = 40
     LENGTH_STACK = 96
+    MAX_LENGTH_PANELS = 4096
 
 
 cdef struct Piece:
@@ -200,8 +201,10 @@ cdef inline double panel_length(const Piece* p, double lo, double hi) noexcept n
 
 cdef inline double arc_length(const Piece* p, double u0, double u1) noexcept nogil:
     """Length of ``Q`` over ``[u0, u1]`` (docs/method.md §6): adaptive 12-point
-    Gauss–Legendre, a panel kept where it agrees with its two halves to 1e-14 relative (the
-    speed is smooth, but can dip steeply near a cusp or as the spiral's θ → 90°)."""
+    Gauss–Legendre, a panel kept where it agrees with its two halves to 1e-14 of itself or
+    of the whole length (the speed is smooth, but can dip steeply near a cusp or as the
+    spiral's θ → 90°, where it is known only to its rounding relative to its larger terms),
+    and at most ``MAX_LENGTH_PANELS`` panels in all."""
     cdef double lo_stack[LENGTH_STACK]
     cdef double hi_stack[LENGTH_STACK]
     cdef double whole_stack[LENGTH_STACK]
@@ -209,15 +212,18 @@ cdef inline double arc_length(const Piece* p, double u0, double u1) noexcept nog
     cdef int top = 0, depth
     cdef double total = 0.0, lo, hi, whole, mid, left, right
     lo_stack[0], hi_stack[0], whole_stack[0], depth_stack[0] = u0, u1, panel_length(p, u0, u1), 0
+    cdef double floor = 1e-14 * fabs(whole_stack[0])
+    cdef int panels = 0
     top = 1
     while top > 0:
         top -= 1
         lo, hi, whole, depth = lo_stack[top], hi_stack[top], whole_stack[top], depth_stack[top]
         mid = 0.5 * (lo + hi)
         left, right = panel_length(p, lo, mid), panel_length(p, mid, hi)
-        if depth >= MAX_LENGTH_DEPTH or top + 2 > LENGTH_STACK or fabs(
-            left + right - whole
-        ) <= 1e-14 * fabs(left + right):
+        panels += 2
+        if depth >= MAX_LENGTH_DEPTH or top + 2 > LENGTH_STACK or panels >= MAX_LENGTH_PANELS or (
+            fabs(left + right - whole) <= max(1e-14 * fabs(left + right), floor)
+        ):
             total += left + right
             continue
         lo_stack[top], hi_stack[top], whole_stack[top], depth_stack[top] = mid, hi, right, depth + 1

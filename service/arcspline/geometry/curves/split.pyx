@@ -180,6 +180,20 @@ cdef inline void set_frame(
     f[16], f[17], f[18] = w1, w2, <double>kind
 
 
+cdef inline void stop_at_end(Row* row) noexcept nogil:
+    """Make the local speed at ``u = 1`` exactly 0, as it is (a cusp, coincident last control
+    points): the frame's rounding, of the coordinates' size, would otherwise leave a speed of
+    noise there whose direction is arbitrary. ``x1`` takes up the difference, or ``x2`` where
+    the piece also starts at rest (``x1 = 0``); the change is within that rounding."""
+    cdef double* f = row.frame
+    cdef int k
+    for k in range(2):  # x, then y: coefficients at f[10 + 3k .. 12 + 3k]
+        if f[10 + 3 * k] != 0.0:
+            f[10 + 3 * k] = -(2.0 * f[11 + 3 * k] + 3.0 * f[12 + 3 * k])
+        else:
+            f[11 + 3 * k] = -1.5 * f[12 + 3 * k]
+
+
 cdef int bezier_cuts(const Bezier* b, bint extrema, double* cuts) noexcept nogil:
     """The sorted cut parameters in ``(0, 1)`` of a curved Bézier segment; their number."""
     cdef double d[3][2]
@@ -383,6 +397,8 @@ cdef void bezier_pieces(
         mirror = -1.0 if turn < 0.0 else 1.0
         set_frame(&row, start, end, bezier_direction(b, ta, 1.0), mirror, coordinates,
                   a1, a2, a3, 0.0, 0.0, FIT)
+        if norm(bezier_derivative(b, tb)) <= noise:
+            stop_at_end(&row)
         row.segment, row.t0, row.t1, row.half_angle = segment, ta, tb, 0.0
         rows.push_back(row)
         start = end
