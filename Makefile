@@ -58,6 +58,7 @@ bench: $(KERNELS)
 	$(BIN)/python bench/core.py
 	$(BIN)/python bench/fewest.py
 	$(BIN)/python bench/paths.py
+	$(BIN)/python bench/drawings.py
 	$(BIN)/python bench/service.py
 	$(BIN)/python bench/startup.py
 

@@ -4,14 +4,21 @@
   (``@pytest.mark.anyio``); session-scoped so that module-scoped async fixtures work.
 - ``paper_request``: the body of ``POST /v1/approximate`` for the paper's example
   (Walton & Meek 1996, Table 1: 12 arcs at this tolerance of 0.001).
+- ``rs274``: LinuxCNC's interpreter, fetched and cached by ``scripts/fetch-rs274.sh``.
 """
 
 from __future__ import annotations
 
 import copy
+import subprocess
+from pathlib import Path
 from typing import Any
 
 import pytest
+
+from tests.support.rs274 import Rs274
+
+FETCH = Path(__file__).resolve().parents[1] / "scripts" / "fetch-rs274.sh"
 
 PAPER_SPIRAL: dict[str, Any] = {
     "start": [1.5, 3.0],
@@ -29,3 +36,15 @@ def anyio_backend() -> str:
 @pytest.fixture
 def paper_request() -> dict[str, Any]:
     return {"spiral": copy.deepcopy(PAPER_SPIRAL), "tolerance": 0.001}
+
+
+@pytest.fixture(scope="session")
+def rs274() -> Rs274:
+    """The interpreter, fetched once per machine (the script caches it and takes a lock, so
+    the xdist workers of one run share a single download)."""
+    done = subprocess.run(
+        ["bash", str(FETCH)], capture_output=True, text=True, timeout=600, check=False
+    )
+    if done.returncode != 0:
+        pytest.fail(f"{FETCH.name} could not provide rs274:\n{done.stderr}", pytrace=False)
+    return Rs274(Path(done.stdout.strip().splitlines()[-1]))

@@ -16,6 +16,14 @@ def test_the_documented_example_runs() -> None:
     assert result.failed == 0
 
 
+def test_the_drawings_example_runs() -> None:
+    import arcspline.drawings
+
+    result = doctest.testmod(arcspline.drawings, optionflags=doctest.NORMALIZE_WHITESPACE)
+    assert result.attempted >= 4
+    assert result.failed == 0
+
+
 def test_every_public_name_is_documented_and_exported() -> None:
     for name in arcspline.__all__:
         value = getattr(arcspline, name)

@@ -35,8 +35,13 @@ The Python API (the HTTP service, the benchmarks and the tests use the same)::
 * **Results** — :class:`ArcSpline`: ``segments`` (:class:`ArcSegment`, :class:`LineSegment`),
   ``columns`` (:class:`SegmentColumns`, numpy views), ``table`` (one row per segment,
   :data:`COLUMN`), ``stats`` (:class:`SplineStats`), ``tolerance`` and ``strategy``.
-* **Outputs** — ``arcspline.outputs``: a G-code program (``outputs.gcode.write_program``) and
-  an SVG picture (``outputs.svg.render_svg``).
+* **Drawings** — ``arcspline.drawings``: SVG and DXF documents read exactly
+  (``read_svg``, ``read_dxf``), joined into toolpaths, ordered and approximated within the
+  tolerance of the drawing as given (``approximate_drawing``); imported on its own, as it
+  loads the document libraries.
+* **Outputs** — ``arcspline.outputs``: a G-code program (``outputs.gcode.write_program``), an
+  SVG picture (``outputs.svg.render_svg``), DXF and SVG documents (``outputs.dxf``,
+  ``outputs.svg_document``) and a drawing's preview (``outputs.drawing_preview``).
 
 Conventions: points are ``(x, y)``; angles in radians unless a name ends in ``_deg``;
 anticlockwise is positive; ``u`` is the curve's parameter in ``[0, 1]``. The method, with

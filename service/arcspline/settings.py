@@ -84,6 +84,17 @@ class Settings(BaseSettings):
     path_max_input_segments: PositiveInt = Field(
         default=20_000, description="Most input segments in one path (422 beyond)."
     )
+    drawing_max_segments: PositiveInt = Field(
+        default=200_000,
+        le=MAX_SEGMENTS,
+        description="Most output segments for one drawing, all toolpaths together (422 beyond).",
+    )
+    drawing_max_elements: PositiveInt = Field(
+        default=100_000, description="Most elements (XML elements, DXF entities) in a drawing."
+    )
+    drawing_max_depth: PositiveInt = Field(
+        default=64, description="Deepest nesting of groups, uses and block references."
+    )
     min_relative_tolerance: PositiveFloat = Field(
         default=DEFAULT_LIMITS.min_relative_tolerance,
         lt=1.0,
@@ -125,6 +136,14 @@ class Settings(BaseSettings):
         """The core's limits for a path: its output segments all together."""
         return Limits(
             max_segments=self.path_max_segments,
+            min_relative_tolerance=self.min_relative_tolerance,
+        )
+
+    @property
+    def drawing_limits(self) -> Limits:
+        """The core's limits for a drawing: its output segments all together."""
+        return Limits(
+            max_segments=self.drawing_max_segments,
             min_relative_tolerance=self.min_relative_tolerance,
         )
 

@@ -42,6 +42,8 @@ def test_operation_ids_are_stable(served: dict[str, Any]) -> None:
         ("/v1/paths/approximate", "post"): "approximate_path",
         ("/v1/paths/batch", "post"): "approximate_paths_batch",
         ("/v1/paths/preview", "post"): "preview_path",
+        ("/v1/drawings/approximate", "post"): "approximate_drawing",
+        ("/v1/drawings/preview", "post"): "preview_drawing",
         ("/healthz", "get"): "healthz",
         ("/readyz", "get"): "readyz",
         ("/metrics", "get"): "metrics",

@@ -41,7 +41,7 @@ def test_the_writer_draws_every_segment_of_a_fewest_arcs_spline() -> None:
 
 
 def test_each_writer_is_registered_under_its_name() -> None:
-    assert set(WRITERS) == {"gcode", "svg"}
+    assert set(WRITERS) == {"gcode", "svg", "dxf", "svg-document", "drawing-preview"}
     for name, writer in WRITERS.items():
         assert writer.name == name
         assert "/" in writer.media_type

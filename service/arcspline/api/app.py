@@ -15,7 +15,7 @@ from arcspline.settings import Settings, get_settings
 from arcspline.worker.jobs import approximate_chunk
 from arcspline.worker.pool import Coalescer, WorkerPool
 
-from . import approximate, health, metrics, paths, preview
+from . import approximate, drawings, health, metrics, paths, preview
 from .errors import RawJSONResponse, install_error_handlers
 from .limits import BodyLimitMiddleware
 from .metrics import MetricsMiddleware
@@ -87,7 +87,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     )
     app.state.runtime = runtime
     install_error_handlers(app)
-    for module in (approximate, paths, preview, health, metrics):
+    for module in (approximate, paths, drawings, preview, health, metrics):
         app.include_router(module.router)
     # The last added is the outermost: request id, then metrics, then the body limit.
     app.add_middleware(

@@ -46,6 +46,9 @@ KINDS: dict[str, tuple[int, str]] = {
     "segment_limit": (422, "Too many segments"),
     "precision": (422, "Beyond double precision"),
     "gcode": (422, "G-code cannot be written"),
+    "invalid_document": (422, "Invalid document"),
+    "unsupported_media_type": (415, "Unsupported media type"),
+    "not_acceptable": (406, "Not acceptable"),
     "internal": (500, "Internal server error"),
     "queue_full": (503, "Server busy"),
     "pool_unavailable": (503, "Workers unavailable"),
@@ -129,7 +132,9 @@ def problem_response(
 
 _RESPONSE_DESCRIPTIONS = {
     400: "Malformed JSON",
+    406: "The Accept header names no output the endpoint gives",
     413: "Request body too large, or too many jobs",
+    415: "The body's media type is not one the endpoint reads",
     422: "Invalid request: the errors name each field",
     503: "Busy (queue full; see Retry-After) or workers unavailable",
     504: "Time limit exceeded",
@@ -156,8 +161,8 @@ _CORE_FIELD = re.compile(r"(?P<name>[A-Za-z_]\w*)(?:\[(?P<index>\d+)\])?")
 
 def core_field_loc(field: str) -> Loc:
     """The request path of a core parameter: ``control_points[2]`` → spiral.control_points.2."""
-    if field.startswith("path"):
-        # path.subpaths[0].segments[3] → path.subpaths.0.segments.3
+    if field.startswith(("path", "toolpaths")):
+        # path.subpaths[0].segments[3] → path.subpaths.0.segments.3 (toolpaths[2] alike)
         return [int(part) if part.isdigit() else part for part in re.findall(r"\w+", field)]
     match = _CORE_FIELD.fullmatch(field)
     if match is None:

@@ -71,7 +71,7 @@ def _parameters(endpoint: Endpoint) -> tuple[str | None, tuple[str, TypeAdapter[
     return request_name, body
 
 
-async def _body(request: Request) -> bytes:
+async def read_body(request: Request) -> bytes:
     """The request's body: ``Request.body()`` without its stream machinery (nothing else
     reads these bodies)."""
     chunks: list[bytes] = []
@@ -84,7 +84,7 @@ async def _body(request: Request) -> bytes:
             return chunks[0] if len(chunks) == 1 else b"".join(chunks)
 
 
-def _is_json(content_type: str | None) -> bool:
+def is_json(content_type: str | None) -> bool:
     if not content_type:
         return False
     media = content_type.split(";", 1)[0].strip().lower()
@@ -95,12 +95,12 @@ def _is_json(content_type: str | None) -> bool:
 async def json_body(request: Request, adapter: TypeAdapter[Any]) -> Any:
     """The request's JSON body validated by ``adapter``, as FastAPI would take it: an empty
     body is a missing one, a body not declared as JSON is not an object."""
-    raw = await _body(request)
+    raw = await read_body(request)
     if not raw:
         missing = {"type": "missing", "loc": ("body",), "msg": "Field required", "input": None}
         raise RequestValidationError([missing])
     try:
-        if _is_json(request.headers.get("content-type")):
+        if is_json(request.headers.get("content-type")):
             return adapter.validate_json(raw)
         return adapter.validate_python(raw)  # bytes: "a valid dictionary" is what fails
     except ValidationError as error:

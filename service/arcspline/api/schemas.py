@@ -151,6 +151,12 @@ class GcodeRequest(RequestModel):
     plunge_feed_rate: float | None = Field(
         default=None, gt=0, description="Feed rate of the plunge."
     )
+    step_down: float | None = Field(
+        default=None,
+        gt=0,
+        description="Cut in passes at most this deep, from the stock top at Z0 down to cut_z "
+        "(needs safe_z and cut_z < 0).",
+    )
     min_arc_length: float | None = Field(
         default=None, gt=0, description="Arcs shorter than this become G1 where tolerance allows."
     )
@@ -253,6 +259,11 @@ class ProblemErrorResponse(ResponseModel):
     loc: list[str | int] = Field(description="Path of the field, e.g. ['body', 'tolerance'].")
     msg: str
     type: str
+    element: str | None = Field(
+        default=None,
+        description="For a drawing: the element of the document (`path#p`, `rect (line 12)`, "
+        "`INSERT #2F`) or `document`.",
+    )
 
 
 class ProblemResponse(ResponseModel):

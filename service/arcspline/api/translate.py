@@ -4,11 +4,13 @@ from __future__ import annotations
 
 from typing import Any
 
+from arcspline.drawings import DocumentError
 from arcspline.geometry import GeometryError
 from arcspline.outputs.gcode import GcodeError, GcodeOptions
 from arcspline.worker.jobs import Job, Output, PathJob
 
-from .errors import Loc, ProblemError, gcode_problem, geometry_problem
+from .drawing_schemas import DrawingRequest
+from .errors import Loc, ProblemError, dotted, gcode_problem, geometry_problem, problem
 from .path_schemas import PathRequest
 from .schemas import ApproximateRequest, GcodeRequest
 
@@ -52,3 +54,17 @@ def job_problem(
     if isinstance(error, GeometryError):
         return geometry_problem(error, prefix)
     return gcode_problem(error, prefix, curve)
+
+
+def drawing_problem(
+    error: GeometryError | GcodeError | DocumentError, prefix: Loc
+) -> dict[str, Any]:
+    """The problem of a drawing job: a document the reader refuses names the element (its
+    id, type or line) under ``document``; a request field it names (``layers``) directly."""
+    if not isinstance(error, DocumentError):
+        return job_problem(error, prefix, "document")
+    field = error.where if error.where in DrawingRequest.model_fields else "document"
+    loc: Loc = [*prefix, field]
+    at = "" if error.where == field else f" ({error.where})"
+    item = {"loc": loc, "msg": error.reason, "type": "invalid_document", "element": error.where}
+    return problem("invalid_document", f"{dotted(loc)}{at}: {error.reason}", errors=[item])

@@ -1,5 +1,5 @@
 """A rational cubic Bézier piece as plain cubics within a certified distance (docs/drawings.md
-§5).
+§4).
 
 Our curves are rational of degree ≤ 2, so a rational cubic ``R(t) = P(t)/w(t)`` (homogeneous
 control points ``H_i = (w_i·p_i, w_i)``, ``P = Σ B³_i·w_i·p_i``, ``w = Σ B³_i·w_i``) that is

@@ -1,4 +1,4 @@
-"""A DXF SPLINE (a NURBS curve) as our segments, exactly (docs/drawings.md §5).
+"""A DXF SPLINE (a NURBS curve) as our segments, exactly (docs/drawings.md §4).
 
 The curve on its domain ``[U[p], U[n]]`` (``n`` control points, degree ``p``, knots ``U``) is
 cut at its knots into Bézier pieces by blossoming: on the span ``[a, b] = [U[k], U[k+1]]`` the

@@ -1,5 +1,5 @@
 """A DXF SPLINE entity's curve as a :class:`SplineData` NURBS in the XY plane (docs/drawings.md
-§5): its control points, knots and weights, or ezdxf's interpolation of its fit points.
+§4): its control points, knots and weights, or ezdxf's interpolation of its fit points.
 
 A closed or periodic spline (group 70 bits 1, 2) with ``n`` control points and only ``n + 1``
 knots is written as OpenCascade writes periodic curves: the knots span one period. It is

@@ -1,9 +1,12 @@
 """What an arc spline is turned into: each output a writer behind one protocol.
 
 A writer is a module with a ``WRITER`` (:class:`Writer`) and one line in :data:`WRITERS`:
-``gcode`` (an RS-274 program, ``gcode/``) and ``svg`` (a picture of the approximation,
-``svg.py``). Writers are pure: parts (arc splines and the curves they approximate: a spiral
-is one part, a path one per subpath) and the writer's options in, text out; what they refuse
+``gcode`` (an RS-274 program, ``gcode/``), ``svg`` (a picture of the approximation,
+``svg.py``), ``dxf`` (an R2000 DXF of lines and arcs, ``dxf.py``), ``svg-document`` (the
+toolpaths as an SVG document in mm, ``svg_document.py``) and ``drawing-preview`` (a whole
+drawing in cutting order, ``drawing_preview.py``). Writers are pure: parts (arc splines and
+the curves they approximate: a spiral is one part, a path one per subpath) and the writer's
+options in, text out; what they refuse
 they raise as their own error (:class:`~.gcode.GcodeError`) or a
 :class:`~arcspline.geometry.GeometryError`.
 """
@@ -13,7 +16,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import Any, Protocol
 
-from . import gcode, svg
+from . import drawing_preview, dxf, gcode, svg, svg_document
 from .part import Part
 
 
@@ -33,6 +36,15 @@ class Writer(Protocol):
 
 
 #: The writers by name.
-WRITERS: dict[str, Writer] = {writer.name: writer for writer in (gcode.WRITER, svg.WRITER)}
+WRITERS: dict[str, Writer] = {
+    writer.name: writer
+    for writer in (
+        gcode.WRITER,
+        svg.WRITER,
+        dxf.WRITER,
+        svg_document.WRITER,
+        drawing_preview.WRITER,
+    )
+}
 
 __all__ = ["WRITERS", "Part", "Writer"]

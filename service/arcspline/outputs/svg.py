@@ -57,7 +57,7 @@ def _segment_samples(spline: ArcSpline, per: int) -> tuple[FloatArray, npt.NDArr
     return u, index
 
 
-def _deviation_curves(
+def deviation_curves(
     curve: Curve, spline: ArcSpline, magnify: float, per: int
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
     """Per segment (rows): the magnified deviation curve and both band edges, ``(n, per, 2)``."""
@@ -154,7 +154,7 @@ def layout(parts: Sequence[Part]) -> Layout:
             return np.stack([x, y], axis=-1)
 
         per = max(8, DEVIATION_SAMPLES // max(len(c), 1))
-        curves = [_deviation_curves(curve, part, magnify, per) for part, curve in parts]
+        curves = [deviation_curves(curve, part, magnify, per) for part, curve in parts]
         deviation, band_out, band_in = (np.concatenate(a) for a in zip(*curves, strict=True))
         result = Layout(
             width_px=WIDTH_PX,

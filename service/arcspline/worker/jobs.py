@@ -143,7 +143,7 @@ def _stats(s: SplineStats, tolerance: float, strategy: str) -> dict[str, Any]:
     }
 
 
-def _finite_body(
+def finite_body(
     head: bytes, nulls: int, outputs: dict[str, str], arcs: int, lines: int
 ) -> Encoded | GeometryError:
     # orjson writes NaN and Infinity as null, and no number of the segments and statistics
@@ -169,7 +169,7 @@ def encode(spline: ArcSpline, outputs: dict[str, str]) -> Encoded | GeometryErro
     stats["u_at_max_deviation"] = s.u_at_max_deviation
     stats["spiral_length"] = s.spiral_length
     head = orjson.dumps({"segments": _segments(spline.values()), "stats": stats})
-    return _finite_body(head, 2 if s.arc_count == 0 else 0, outputs, s.arc_count, s.line_count)
+    return finite_body(head, 2 if s.arc_count == 0 else 0, outputs, s.arc_count, s.line_count)
 
 
 def path_segments(sub: SubpathSpline) -> list[dict[str, Any]]:
@@ -189,9 +189,9 @@ def path_segments(sub: SubpathSpline) -> list[dict[str, Any]]:
     return segments
 
 
-def encode_path(result: PathSpline, outputs: dict[str, str]) -> Encoded | GeometryError:
-    """The ``PathResponse`` body: per subpath its segments and statistics, the statistics of
-    the whole path, and the written ``outputs``."""
+def path_body(result: PathSpline) -> tuple[list[dict[str, Any]], dict[str, Any], int]:
+    """Per subpath its segments and statistics, the statistics of the whole path, and how
+    many ``null`` numbers these hold (the radii of a subpath without arcs)."""
     subpaths = []
     nulls = 0
     worst = (0, 0, 0.0, -1.0)
@@ -214,8 +214,16 @@ def encode_path(result: PathSpline, outputs: dict[str, str]) -> Encoded | Geomet
     overall["curve_length"] = s.spiral_length
     overall["subpath_count"] = len(subpaths)
     nulls += 2 if s.arc_count == 0 else 0
+    return subpaths, overall, nulls
+
+
+def encode_path(result: PathSpline, outputs: dict[str, str]) -> Encoded | GeometryError:
+    """The ``PathResponse`` body: per subpath its segments and statistics, the statistics of
+    the whole path, and the written ``outputs``."""
+    subpaths, overall, nulls = path_body(result)
     head = orjson.dumps({"subpaths": subpaths, "stats": overall})
-    return _finite_body(head, nulls, outputs, s.arc_count, s.line_count)
+    s = result.stats
+    return finite_body(head, nulls, outputs, s.arc_count, s.line_count)
 
 
 #: A result with a NaN or an infinity: JSON cannot carry it, and no response may hold one.
@@ -227,7 +235,7 @@ _NOT_FINITE = GeometryError(
 )
 
 
-def _write(outputs: tuple[Output, ...], parts: list[Part]) -> dict[str, str] | GcodeError:
+def write_outputs(outputs: tuple[Output, ...], parts: list[Part]) -> dict[str, str] | GcodeError:
     """Every output asked for, by writer name, or the first writer's refusal."""
     try:
         return {name: WRITERS[name].write(parts, options) for name, options in outputs}
@@ -237,7 +245,7 @@ def _write(outputs: tuple[Output, ...], parts: list[Part]) -> dict[str, str] | G
 
 def _finish(job: Job, curve: Curve, spline: ArcSpline) -> JobResult:
     """Write the outputs asked for, and encode."""
-    outputs = _write(job.outputs, [(spline, curve)])
+    outputs = write_outputs(job.outputs, [(spline, curve)])
     return outputs if isinstance(outputs, GcodeError) else encode(spline, outputs)
 
 
@@ -293,7 +301,7 @@ def approximate_path_one(job: PathJob, limits: Limits) -> JobResult:
     except GeometryError as error:
         return error
     assert result is not None
-    outputs = _write(job.outputs, parts)
+    outputs = write_outputs(job.outputs, parts)
     return outputs if isinstance(outputs, GcodeError) else encode_path(result, outputs)
 
 

@@ -22,9 +22,9 @@ from arcspline.outputs.gcode import GcodeOptions
 from arcspline.outputs.gcode.program import write_parts
 from arcspline.paths import parse_path_data
 from tests.support import gcode_reader, path_oracle
+from tests.support.rs274 import Rs274
 
 from .readback import radius_mismatch
-from .rs274 import Rs274
 from .test_gcode_rs274 import _assert_same_moves
 
 PATH = (
@@ -207,3 +207,20 @@ def _as_output(move: gcode_reader.Move, source_segment: int) -> dict[str, Any]:
             sweep_rad=move.sweep_rad,
         )
     return out
+
+
+@pytest.mark.parametrize(("units", "r"), [("mm", 0.0005), ("inch", 0.00002)])
+def test_an_arc_too_small_for_the_controller_is_cut_as_a_line(
+    rs274: Rs274, units: str, r: float
+) -> None:
+    # A half circle of radius r (in the program's unit): LinuxCNC refuses arcs whose radius is
+    # below 0.00005 in (1.27 µm) as zero-radius; its chord is within tolerance.
+    path = parse_path_data(f"M 0 0 L 1 0 A {r} {r} 0 0 1 {1 + 2 * r} 0 L 2 0")
+    result = approximate_path(path, 0.01)
+    spline, curve = result.subpaths[0].spline, result.subpaths[0].curve
+    assert spline.stats.arc_count >= 1
+    program = write_parts([(spline, curve)], GcodeOptions(feed_rate=FEED, units=units))
+    verdict = rs274.run(program)
+    assert verdict.accepted, verdict.describe()
+    read = gcode_reader.read(program)
+    assert all(move.motion == 1 for move in read.cuts)

@@ -14,9 +14,9 @@ from hypothesis import strategies as st
 from arcspline.geometry import GeometryError, Spiral, approximate
 from arcspline.outputs.gcode import MAX_COORDINATE, GcodeError, GcodeOptions, write_program
 from tests.support import gcode_reader, oracle
+from tests.support.rs274 import Rs274
 
 from . import readback
-from .rs274 import Rs274
 
 spirals = st.builds(
     dict,

@@ -3,7 +3,7 @@ the independent reader does.
 
 ``rs274`` runs with its strictest arc check (``tight.ini``: start and end radius within
 0.001 mm / 0.00004" unless within 0.1 %). It is fetched and cached by
-``scripts/fetch-rs274.sh`` (see conftest.py); these tests never skip.
+``scripts/fetch-rs274.sh`` (see tests/conftest.py); these tests never skip.
 """
 
 from __future__ import annotations
@@ -14,9 +14,9 @@ from typing import Any
 import pytest
 
 from tests.support import gcode_reader
+from tests.support.rs274 import Rs274, Verdict
 
 from .cases import MATRIX, matrix_id, program
-from .rs274 import Rs274, Verdict
 
 #: rs274 prints coordinates with 4 decimals.
 PRINTED = 0.5e-4 + 1e-9

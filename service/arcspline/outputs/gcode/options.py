@@ -25,6 +25,9 @@ DEFAULT_DECIMALS: Mapping[str, int] = {"mm": 4, "inch": 5}
 #: Largest magnitude of a coordinate or feed written (X, Y, Z, F): a kilometre in mm;
 #: beyond it a number stops being a plausible machine coordinate.
 MAX_COORDINATE = 1e6
+#: Most depth passes a program may cut (``step_down``): beyond it the step is surely a
+#: mistake (a micrometre step into a millimetre).
+MAX_PASSES = 1000
 
 
 class GcodeError(ValueError):
@@ -70,6 +73,7 @@ class GcodeOptions:
     plunge_feed_rate: float | None = None
     min_arc_length: float | None = None
     max_radius: float | None = None
+    step_down: float | None = None
 
     def __post_init__(self) -> None:
         if self.units not in UNITS:
@@ -96,6 +100,7 @@ class GcodeOptions:
                 raise GcodeError("plunge_feed_rate", "applies only with safe_z and cut_z")
             self._check_feed("plunge_feed_rate", self.plunge_feed_rate)
         self._check_depths()
+        self._check_step_down()
         for name in ("min_arc_length", "max_radius"):
             value = getattr(self, name)
             if value is not None and not (_is_real(value) and math.isfinite(value) and value > 0.0):
@@ -133,6 +138,51 @@ class GcodeOptions:
                 f"must lie above cut_z by at least one unit in the last place "
                 f"(safe_z {self.safe_z:g}, cut_z {self.cut_z:g})",
             )
+
+    def _check_step_down(self) -> None:
+        step = self.step_down
+        if step is None:
+            return
+        if self.safe_z is None or self.cut_z is None:
+            raise GcodeError("step_down", "applies only with safe_z and cut_z")
+        if not (_is_real(step) and math.isfinite(step) and 0.0 < step < MAX_COORDINATE):
+            raise GcodeError(
+                "step_down", f"must be a finite number > 0 and below {MAX_COORDINATE:g}"
+            )
+        d = self.resolved_decimals
+        if round(step * 10**d) < 1:
+            raise GcodeError(
+                "step_down", f"must be at least one unit in the last of {d} decimals, got {step:g}"
+            )
+        if round(self.cut_z * 10**d) >= 0:
+            raise GcodeError(
+                "cut_z",
+                f"must lie below the stock top Z0 when step_down is given, got {self.cut_z:g}",
+            )
+        # ceil(-cut_z / step) in units of the last place: counted before any level is made.
+        passes = -(round(self.cut_z * 10**d) // round(step * 10**d))
+        if passes > MAX_PASSES:
+            raise GcodeError(
+                "step_down",
+                f"{step:g} {self.units} down to cut_z {self.cut_z:g} takes {passes} passes, "
+                f"more than {MAX_PASSES}",
+            )
+
+    @property
+    def pass_levels(self) -> tuple[int, ...]:
+        """The Z of each cutting pass, in units of the last decimal place (``10^-decimals``):
+        ``cut_z`` alone, or with ``step_down`` the stock top Z0 less one step, two steps, ...
+        the last exactly ``cut_z`` (docs/gcode.md "Depth passes"). Empty without ``cut_z``."""
+        if self.cut_z is None:
+            return ()
+        scale = 10**self.resolved_decimals
+        bottom = round(self.cut_z * scale)
+        if self.step_down is None:
+            return (bottom,)
+        step = round(self.step_down * scale)
+        # ceil(-bottom / step) passes, in integers; bounded before the tuple is built.
+        passes = min(-(bottom // step), MAX_PASSES + 1)
+        return (*(-k * step for k in range(1, passes)), bottom)
 
     @property
     def resolved_decimals(self) -> int:

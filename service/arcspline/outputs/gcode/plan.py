@@ -21,8 +21,12 @@ from .options import MAX_COORDINATE, GcodeError, GcodeOptions
 #: 5e-7 rad as a full circle; this leaves a factor of 20.
 MIN_SWEEP_RAD = 1e-5
 #: Arcs with a radius below this many units in the last place are cut as lines: their
-#: rounded centre would carry no information (LinuxCNC rejects radii below 1.27 µm).
+#: rounded centre would carry no information.
 MIN_RADIUS_ULPS = 2
+#: Arcs with a radius below this are cut as lines: LinuxCNC refuses an arc whose radius, as
+#: read from its words, is below its RADIUS_TOLERANCE (0.00005 in, 1.27 µm) as a "zero-radius
+#: arc"; twice that leaves room for the rounding of the words.
+MIN_RADIUS: dict[str, float] = {"mm": 2 * 0.00127, "inch": 2 * 0.00005}
 
 
 class Plan(NamedTuple):
@@ -35,17 +39,17 @@ class Plan(NamedTuple):
 
 
 def _must_be_lines(
-    cols: SegmentColumns, start: IntArray, end: IntArray, decimals: int
+    cols: SegmentColumns, start: IntArray, end: IntArray, decimals: int, units: str
 ) -> npt.NDArray[np.bool_]:
-    """The core's own lines, and arcs a controller could take for a full circle: rounded
-    ends that coincide, a sweep below :data:`MIN_SWEEP_RAD`, a radius of a few units in the
-    last place."""
+    """The core's own lines, and arcs a controller could take for a full circle or refuse:
+    rounded ends that coincide, a sweep below :data:`MIN_SWEEP_RAD`, a radius of a few units
+    in the last place or below :data:`MIN_RADIUS`."""
     q = 10.0**-decimals
     return np.asarray(
         ~cols.is_arc
         | np.all(start == end, axis=1)
         | (np.abs(cols.sweep_rad) < MIN_SWEEP_RAD)
-        | (cols.radius < MIN_RADIUS_ULPS * q),
+        | (cols.radius < max(MIN_RADIUS_ULPS * q, MIN_RADIUS[units])),
         dtype=np.bool_,
     )
 
@@ -126,7 +130,7 @@ def plan_program(spline: ArcSpline, curve: Curve, options: GcodeOptions) -> Plan
     rounded = lattice / 10.0**d
     start, end = lattice[:-1], lattice[1:]
     limit = spline.tolerance + 10.0**-d
-    must = _must_be_lines(cols, start, end, d)
+    must = _must_be_lines(cols, start, end, d, options.units)
     prefer = _flat_arcs(cols, d) | _optional_lines(spline, curve, options)
     choices: list[list[ArcWords | None]] = [[None] for _ in range(n)]
     rows = np.flatnonzero(~must)

@@ -38,6 +38,14 @@ def _header(plans: Sequence[Plan], parts: Sequence[Part], options: GcodeOptions)
         f"(measured max deviation of the program from the curve {measured:.6g} {units}, "
         f"{d} decimals)"
     )
+    levels = options.pass_levels
+    if len(levels) > 1:
+        assert options.step_down is not None
+        step = fixed_point(round(options.step_down * 10**d), d)
+        yield (
+            f"(depth: {len(levels)} passes of at most {step} {units} down to "
+            f"Z{fixed_point(levels[-1], d)}, each cutting every path)"
+        )
 
 
 def _text(plans: Sequence[Plan], parts: Sequence[Part], options: GcodeOptions) -> Iterator[str]:
@@ -49,39 +57,49 @@ def _text(plans: Sequence[Plan], parts: Sequence[Part], options: GcodeOptions) -
         yield from _header(plans, parts, options)
     yield f"G17 {'G21' if units == 'mm' else 'G20'} G90 G91.1 G94 {feed}"
     two_and_a_half = options.safe_z is not None and options.cut_z is not None
-    safe = cut = plunge = ""
+    safe = plunge = ""
     if options.safe_z is not None:
         safe = fixed_point(round(options.safe_z * 10**d), d)
+    levels = [fixed_point(z, d) for z in options.pass_levels]
     if two_and_a_half:
-        assert options.cut_z is not None
-        cut = fixed_point(round(options.cut_z * 10**d), d)
         plunge = feed_word(options.resolved_plunge_feed_rate, d)
     for plan in plans:
         x0, y0 = fixed_point(plan.start[0], d), fixed_point(plan.start[1], d)
         restore = ""
-        if two_and_a_half:
-            yield f"G0 Z{safe}"
+        if not two_and_a_half:
             yield f"G0 X{x0} Y{y0}"
+            yield from _cuts(plan, d, restore)
+            continue
+        # A closed part ends where it starts: the next pass plunges there; an open one
+        # retracts and goes back to its start.
+        closed = plan.ends[-1] == plan.start
+        for k, cut in enumerate(levels):
+            if k == 0 or not closed:
+                yield f"G0 Z{safe}"
+                yield f"G0 X{x0} Y{y0}"
             if plunge == feed:
                 yield f"G1 Z{cut}"
             else:
                 yield f"G1 Z{cut} {plunge}"
                 restore = f" {feed}"
-        else:
-            yield f"G0 X{x0} Y{y0}"
-        for k, (end, arc) in enumerate(zip(plan.ends, plan.arcs, strict=True)):
-            words = f"X{fixed_point(end[0], d)} Y{fixed_point(end[1], d)}"
-            if arc is not None:
-                if arc.radius is not None:
-                    words += f" R{fixed_point(arc.radius, d)}"
-                else:
-                    assert arc.offset is not None
-                    words += f" I{fixed_point(arc.offset[0], d)} J{fixed_point(arc.offset[1], d)}"
-            code = "G1" if arc is None else "G3" if arc.ccw else "G2"
-            yield f"{code} {words}{restore if k == 0 else ''}"
+            yield from _cuts(plan, d, restore)
     if options.safe_z is not None:
         yield f"G0 Z{safe}"
     yield "M2"
+
+
+def _cuts(plan: Plan, d: int, restore: str) -> Iterator[str]:
+    """One block per planned move; the first restores the feed after a slower plunge."""
+    for k, (end, arc) in enumerate(zip(plan.ends, plan.arcs, strict=True)):
+        words = f"X{fixed_point(end[0], d)} Y{fixed_point(end[1], d)}"
+        if arc is not None:
+            if arc.radius is not None:
+                words += f" R{fixed_point(arc.radius, d)}"
+            else:
+                assert arc.offset is not None
+                words += f" I{fixed_point(arc.offset[0], d)} J{fixed_point(arc.offset[1], d)}"
+        code = "G1" if arc is None else "G3" if arc.ccw else "G2"
+        yield f"{code} {words}{restore if k == 0 else ''}"
 
 
 def write_program(spline: ArcSpline, curve: Curve, options: GcodeOptions) -> str:

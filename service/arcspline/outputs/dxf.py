@@ -1,0 +1,221 @@
+"""An arc spline as a DXF drawing (AutoCAD R2000, ASCII), written with ezdxf.
+
+Each part becomes LINE and ARC entities, one per segment (the default), or one LWPOLYLINE
+whose vertices carry bulges (``polyline=True``; closed when the part ends where it starts).
+Every number is written as Python's ``repr`` of the double (ezdxf does so), so a reader gets
+the spline's own coordinates back:
+
+* a LINE's end points are the segment's end points, exactly;
+* an ARC's centre and radius are the segment's; its angles (degrees, anticlockwise, from
+  the centre) are the polar angles of the segment's end points about the centre, so its end
+  points read back as ``centre + radius·(cos, sin)``, within a few ulps of the radius of the
+  segment's own. DXF arcs always run anticlockwise from ``start_angle`` to ``end_angle``: a
+  clockwise segment is written from its end to its start (the same points of the plane).
+  Where the sweep is so near 0 or 360° that rounding of the end points makes the angles
+  say otherwise (equal angles read as a full circle; swapped ones as the complement), the
+  sweep decides: a tiny arc is written as its chord (its sweep is at the rounding level,
+  ~1e-15 rad, so its sagitta is below 1e-29 of its radius), a near circle as two ARCs
+  meeting halfway;
+* an LWPOLYLINE vertex carries the bulge ``tan(sweep/4)`` of the segment that starts there
+  (positive anticlockwise, DXF reference "LWPOLYLINE"), which with the two vertices fixes
+  the arc.
+
+``$INSUNITS`` says the units (4 millimetres, 1 inches) and ``$MEASUREMENT`` the matching
+system (1 metric, 0 imperial); ``$EXTMIN``/``$EXTMAX`` bound the drawing. The entities are
+on the layer ``ARCSPLINE``, or part ``k`` (from 1, cutting order) on ``TOOLPATH_k`` with
+``layer_per_part``. See docs/drawings.md §7.
+"""
+
+from __future__ import annotations
+
+import io
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Literal, get_args
+
+import numpy as np
+from ezdxf.filemanagement import new as new_document
+from ezdxf.layouts.layout import Modelspace
+
+from arcspline.geometry import GeometryError
+from arcspline.geometry.spline import ArcSpline, FloatArray
+
+from .part import Part
+
+MEDIA_TYPE = "image/vnd.dxf"
+DXF_VERSION = "R2000"
+Units = Literal["mm", "inch"]
+UNITS: tuple[str, ...] = get_args(Units)
+#: ``$INSUNITS`` codes (DXF reference, HEADER section).
+INSUNITS = {"mm": 4, "inch": 1}
+#: ``$MEASUREMENT``: 0 imperial, 1 metric.
+MEASUREMENT = {"mm": 1, "inch": 0}
+LAYER = "ARCSPLINE"
+#: The layer of part ``k`` (from 1) with ``layer_per_part``.
+TOOLPATH_LAYER = "TOOLPATH_{}"
+
+
+@dataclass(frozen=True, slots=True)
+class DxfOptions:
+    """How to write the drawing; validated on construction (raises :class:`GeometryError`
+    naming the option). The spline's coordinates are taken to be in ``units`` already."""
+
+    units: Units = "mm"
+    polyline: bool = False
+    layer_per_part: bool = False
+
+    def __post_init__(self) -> None:
+        if self.units not in UNITS:
+            raise GeometryError("units", f"must be one of {', '.join(UNITS)}, got {self.units!r}")
+        for name in ("polyline", "layer_per_part"):
+            value = getattr(self, name)
+            if not isinstance(value, bool):
+                raise GeometryError(name, f"must be true or false, got {value!r}")
+
+
+def _check_finite(splines: Sequence[ArcSpline]) -> None:
+    for spline in splines:
+        c = spline.columns
+        arcs = c.is_arc
+        numbers = (c.start, c.end, c.center[arcs], c.radius[arcs], c.sweep_rad)
+        if not all(bool(np.isfinite(a).all()) for a in numbers):
+            raise GeometryError(
+                "parts",
+                "the spline's coordinates are not finite; no DXF can hold them",
+                kind="precision",
+            )
+
+
+def _polar_deg(point: FloatArray, centre: FloatArray) -> float:
+    """The polar angle of ``point`` about ``centre`` in degrees, in ``[0, 360)``."""
+    angle = math.degrees(math.atan2(point[1] - centre[1], point[0] - centre[0]))
+    return angle % 360.0
+
+
+def extents(splines: Sequence[ArcSpline]) -> tuple[FloatArray, FloatArray]:
+    """The bounding box ``(low, high)`` of the splines: every end point, and each arc's
+    extreme points along the axes where the arc passes them (zeros when there are none)."""
+    lows, highs = [], []
+    for spline in splines:
+        c = spline.columns
+        ends = np.concatenate([c.start, c.end])
+        lows.append(ends.min(axis=0))
+        highs.append(ends.max(axis=0))
+        arcs = c.is_arc
+        a0, sweep = c.start_angle_rad[arcs], c.sweep_rad[arcs]
+        lo_rad, hi_rad = np.minimum(a0, a0 + sweep), np.maximum(a0, a0 + sweep)
+        for k in range(4):  # the axis directions 0, π/2, π, 3π/2
+            phi = k * math.pi / 2
+            # The arc passes phi + 2πn for some n when it lies within [lo, hi].
+            n = np.ceil((lo_rad - phi) / (2 * math.pi))
+            passes = phi + 2 * math.pi * n <= hi_rad
+            extreme = c.center[arcs][passes] + c.radius[arcs][passes, None] * np.array(
+                [round(math.cos(phi)), round(math.sin(phi))], dtype=np.float64
+            )
+            if len(extreme):
+                lows.append(extreme.min(axis=0))
+                highs.append(extreme.max(axis=0))
+    if not lows:
+        return np.zeros(2), np.zeros(2)
+    return np.min(lows, axis=0), np.max(highs, axis=0)
+
+
+def _add_arc(
+    msp: Modelspace,
+    centre: FloatArray,
+    radius: float,
+    start: FloatArray,
+    end: FloatArray,
+    sweep_rad: float,
+    attribs: dict[str, str],
+) -> None:
+    """One ARC from ``start`` to ``end`` (two when needed, or the chord: module docstring)."""
+    start_deg, end_deg = _polar_deg(start, centre), _polar_deg(end, centre)
+    if sweep_rad < 0.0:  # DXF arcs run anticlockwise
+        start_deg, end_deg = end_deg, start_deg
+    sweep_deg = math.degrees(abs(sweep_rad))
+    ccw_deg = (end_deg - start_deg) % 360.0
+    centre_xy = (float(centre[0]), float(centre[1]))
+    # Near 0 or 360 degrees, rounding of the end points can swap what the angles say: a
+    # sliver for a near circle or the reverse. The sweep decides.
+    if ccw_deg != 0.0 and abs(ccw_deg - sweep_deg) <= 180.0:
+        msp.add_arc(centre_xy, radius, start_deg, end_deg, dxfattribs=attribs)
+    elif sweep_deg > 180.0:
+        middle_deg = (start_deg + sweep_deg / 2) % 360.0
+        msp.add_arc(centre_xy, radius, start_deg, middle_deg, dxfattribs=attribs)
+        msp.add_arc(centre_xy, radius, middle_deg, end_deg, dxfattribs=attribs)
+    else:
+        msp.add_line(
+            (float(start[0]), float(start[1])), (float(end[0]), float(end[1])), dxfattribs=attribs
+        )
+
+
+def _add_segments(msp: Modelspace, spline: ArcSpline, layer: str) -> None:
+    """One LINE or ARC per segment."""
+    c = spline.columns
+    attribs = {"layer": layer}
+    for i in range(len(c)):
+        start, end, centre = c.start[i], c.end[i], c.center[i]
+        if c.is_arc[i]:
+            _add_arc(msp, centre, float(c.radius[i]), start, end, float(c.sweep_rad[i]), attribs)
+            continue
+        msp.add_line(
+            (float(start[0]), float(start[1])), (float(end[0]), float(end[1])), dxfattribs=attribs
+        )
+
+
+def _add_polyline(msp: Modelspace, spline: ArcSpline, layer: str) -> None:
+    """One LWPOLYLINE for the whole spline, its arcs as bulges."""
+    c = spline.columns
+    if len(c) == 0:
+        return
+    bulge = np.where(c.is_arc, np.tan(c.sweep_rad / 4.0), 0.0)
+    points = [(float(x), float(y), float(b)) for (x, y), b in zip(c.start, bulge, strict=True)]
+    closed = len(c) > 1 and bool((c.end[-1] == c.start[0]).all())
+    if not closed:
+        points.append((float(c.end[-1, 0]), float(c.end[-1, 1]), 0.0))
+    msp.add_lwpolyline(points, format="xyb", close=closed, dxfattribs={"layer": layer})
+
+
+def write_dxf(parts: Sequence[Part], options: DxfOptions) -> str:
+    """The drawing described in the module docstring, as DXF text."""
+    splines = [spline for spline, _ in parts]
+    _check_finite(splines)
+    doc = new_document(DXF_VERSION, units=INSUNITS[options.units])
+    doc.header["$MEASUREMENT"] = MEASUREMENT[options.units]
+    msp = doc.modelspace()
+    # ezdxf copies the model space's extents into $EXTMIN/$EXTMAX when it writes, unless
+    # they are both zero vectors (within 1e-12): set both.
+    low, high = extents(splines)
+    for name, corner in (("extmin", low), ("extmax", high)):
+        point = (float(corner[0]), float(corner[1]), 0.0)
+        msp.dxf.set(name, point)
+        doc.header[f"${name.upper()}"] = point
+    layers = (
+        [TOOLPATH_LAYER.format(k + 1) for k in range(len(splines))]
+        if options.layer_per_part
+        else [LAYER]
+    )
+    for name in layers:
+        doc.layers.add(name)
+    add = _add_polyline if options.polyline else _add_segments
+    for k, spline in enumerate(splines):
+        add(msp, spline, layers[k] if options.layer_per_part else LAYER)
+    stream = io.StringIO()
+    doc.write(stream)
+    return stream.getvalue()
+
+
+class DxfWriter:
+    """The DXF drawing as an output writer (options: :class:`DxfOptions`, or None for the
+    defaults)."""
+
+    name = "dxf"
+    media_type = MEDIA_TYPE
+
+    def write(self, parts: Sequence[Part], options: DxfOptions | None = None) -> str:
+        return write_dxf(parts, options if options is not None else DxfOptions())
+
+
+WRITER = DxfWriter()
