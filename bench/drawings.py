@@ -5,8 +5,8 @@ For every SVG and DXF file of the corpus (``$SHARED_CORPUS`` or ``../shared/corp
 0.01 mm and 0.001 mm with ``subdivide`` and ``fewest-arcs``, prints:
 
 * input: elements read (skipped), input segments, toolpaths after joining;
-* the time of the whole pipeline (read, join, order, approximate: ``approximate_drawing``),
-  best of a few runs;
+* the time to read the document, and of the pipeline after it (tidy, join, order,
+  approximate: ``approximate_drawing``), best of a few runs;
 * output segments, and the BASELINE measured in the same run: the paths issue's pipeline,
   every element read (and tidied) approximated as a path of its own (no joining, no
   ordering) — segments and time;
@@ -91,11 +91,12 @@ def main() -> None:
         spec = DocumentSpec(file.read_bytes(), fmt, curve_tolerance_mm=curve_mm)  # type: ignore[arg-type]
         name = file.name[:48]
         try:
-            drawing = spec.read()
+            drawing, read_s = _best(spec.read)
         except DocumentError as error:
             print(f"{name:48} refused: {error}")
             continue
         segments_in = sum(len(e.subpath.segments) for e in drawing.elements)
+        print(f"{name:48} read in {read_s * 1e3:.1f} ms ({spec.content.__len__()} bytes)")
         for tolerance in TOLERANCES_MM:
             for strategy in STRATEGIES:
                 options = DrawingOptions(tolerance, strategy)  # type: ignore[arg-type]
