@@ -327,6 +327,18 @@ idle = statistics.median(idle)
 with urllib.request.urlopen(base + "/healthz", timeout=5) as r:
     if r.status != 200:
         sys.exit(f"image.sh: FAILED: {what}: /healthz answered {r.status}")
+# A drawing through the image's document libraries (defusedxml): a raw SVG in, G-code out.
+svg = (b'<svg xmlns="http://www.w3.org/2000/svg" width="40mm" height="30mm" viewBox="0 0 40 30">'
+       b'<circle cx="20" cy="15" r="5"/></svg>')
+req = urllib.request.Request(
+    base + "/v1/drawings/approximate?tolerance=0.01&feed_rate=600", data=svg,
+    headers={"Content-Type": "image/svg+xml", "Accept": "text/x-gcode"}, method="POST")
+with urllib.request.urlopen(req, timeout=30) as r:
+    program = r.read().decode()
+    if r.status != 200 or "G2" not in program and "G3" not in program:
+        sys.exit(f"image.sh: FAILED: {what}: a drawing gave HTTP {r.status}: {program[:200]}")
+print(f"==>     {what}: POST /v1/drawings/approximate (raw SVG circle) -> a program of "
+      f"{program.count(chr(10))} lines", file=sys.stderr)
 print(f"==>     {what}: POST /v1/approximate (paper's example, tolerance 0.001) -> 12 arcs; "
       f"first request {first * 1e3:.1f} ms, then {warm * 1e3:.1f} ms back to back "
       f"({first / warm:.1f}x), {idle * 1e3:.1f} ms after 1 s idle ({first / idle:.1f}x)",

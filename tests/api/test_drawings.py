@@ -218,6 +218,28 @@ async def test_dxf_and_svg_outputs_by_field(
         ET.fromstring(response.text)
 
 
+async def test_the_dxf_output_as_polylines_with_bulges(client: httpx.AsyncClient) -> None:
+    response = await client.post(
+        URL,
+        json={
+            "document": SVG, "format": "svg", "tolerance": 0.01, "output": "dxf",
+            "dxf": {"polyline": True, "layer_per_toolpath": True},
+        },
+    )  # fmt: skip
+    assert response.status_code == 200, response.text
+    doc = ezdxf.read(io.StringIO(response.text))
+    polylines = list(doc.modelspace().query("LWPOLYLINE"))
+    assert len(polylines) == 2
+    assert {p.dxf.layer for p in polylines} == {"TOOLPATH_1", "TOOLPATH_2"}
+    assert all(p.closed for p in polylines)
+    # the circle (6 mm about (30, 15)): every vertex on it, and its bulges turn a full circle
+    circle = next(p for p in polylines if p.has_arc and len(p) <= 4)
+    points = circle.get_points("xyb")
+    assert all(math.hypot(x - 30, y - 15) == pytest.approx(6, abs=1e-9) for x, y, _ in points)
+    # (clockwise: SVG draws a circle from angle 0 towards +y, which is down)
+    assert sum(4 * math.atan(b) for _, _, b in points) == pytest.approx(-2 * math.pi, abs=1e-9)
+
+
 async def test_preview_draws_the_toolpaths(client: httpx.AsyncClient) -> None:
     response = await client.post(
         PREVIEW, json={"document": SVG, "format": "svg", "tolerance": 0.01}

@@ -8,7 +8,7 @@ from arcspline.outputs.gcode import GcodeError, GcodeOptions
 from arcspline.outputs.svg_document import SvgDocumentOptions
 from arcspline.worker.jobs import Output
 
-from .drawing_schemas import OUTPUTS, DrawingOutput, DrawingRequest
+from .drawing_schemas import OUTPUTS, DrawingOutput, DrawingRequest, DxfRequest
 from .errors import ProblemError, gcode_problem, problem
 
 #: The raw documents a drawing request may send, and their format (``None``: say it in
@@ -92,7 +92,9 @@ def document_outputs(body: DrawingRequest, output: DrawingOutput) -> tuple[Outpu
     if output == "gcode":
         return (("gcode", gcode_options(body)),)
     if output == "dxf":
-        return (("dxf", DxfOptions(units=body.units)),)
+        dxf = body.dxf or DxfRequest()
+        options = DxfOptions(body.units, dxf.polyline, dxf.layer_per_toolpath)
+        return (("dxf", options),)
     return (("svg-document", SvgDocumentOptions(units=body.units)),)
 
 

@@ -39,6 +39,18 @@ DRAWING_EXAMPLE: dict[str, Any] = {
 }
 
 
+class DxfRequest(RequestModel):
+    """How the ``dxf`` output is written."""
+
+    polyline: bool = Field(
+        default=False,
+        description="One LWPOLYLINE with bulges per toolpath instead of a LINE or ARC per segment.",
+    )
+    layer_per_toolpath: bool = Field(
+        default=False, description="Each toolpath on a layer of its own, TOOLPATH_1, ..."
+    )
+
+
 class DrawingRequest(RequestModel):
     """A drawing to cut: an SVG or DXF document, approximated toolpath by toolpath within
     ``tolerance`` (in ``units``), joined and ordered into one program."""
@@ -84,6 +96,7 @@ class DrawingRequest(RequestModel):
     gcode: GcodeRequest | None = Field(
         default=None, description="G-code options (needed for the `gcode` output)."
     )
+    dxf: DxfRequest | None = Field(default=None, description="Options of the `dxf` output.")
 
     @model_validator(mode="after")
     def _gcode_units(self) -> DrawingRequest:

@@ -38,7 +38,7 @@ from .translate import drawing_problem
 _ADAPTER: TypeAdapter[DrawingRequest] = TypeAdapter(DrawingRequest)
 #: Query parameters of a raw document: the request's fields, and the G-code options.
 _GCODE_FIELDS = frozenset(GcodeRequest.model_fields) - {"units"}
-_FIELDS = frozenset(DrawingRequest.model_fields) - {"document", "encoding", "gcode"}
+_FIELDS = frozenset(DrawingRequest.model_fields) - {"document", "encoding", "gcode", "dxf"}
 
 
 def _from_query(query: Mapping[str, str], media_type: str, raw: bytes) -> DrawingRequest:
