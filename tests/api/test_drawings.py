@@ -240,6 +240,19 @@ async def test_the_dxf_output_as_polylines_with_bulges(client: httpx.AsyncClient
     assert sum(4 * math.atan(b) for _, _, b in points) == pytest.approx(-2 * math.pi, abs=1e-9)
 
 
+async def test_dxf_options_as_query_parameters(client: httpx.AsyncClient) -> None:
+    response = await client.post(
+        URL,
+        content=SVG.encode(),
+        headers={"Content-Type": "image/svg+xml", "Accept": "image/vnd.dxf"},
+        params={"tolerance": "0.01", "polyline": "true"},
+    )
+    assert response.status_code == 200, response.text
+    doc = ezdxf.read(io.StringIO(response.text))
+    assert len(doc.modelspace().query("LWPOLYLINE")) == 2
+    assert len(doc.modelspace().query("LINE ARC")) == 0
+
+
 async def test_preview_draws_the_toolpaths(client: httpx.AsyncClient) -> None:
     response = await client.post(
         PREVIEW, json={"document": SVG, "format": "svg", "tolerance": 0.01}

@@ -112,3 +112,13 @@ def test_a_refusal_names_the_toolpath_and_its_elements() -> None:
     assert caught.value.field == "tolerance"
     assert "at toolpaths[0].segments[0]" in caught.value.message
     assert caught.value.message.endswith("(drawn by path#s1)")  # too far to join at 1e-14
+
+
+@pytest.mark.parametrize("x", [math.nan, math.inf, 1e160])
+def test_an_element_beyond_the_core_is_refused_by_name_before_joining(x: float) -> None:
+    wild = Element(Subpath((Line((0.0, 0.0), (x, 1.0)),)), "line#wild")
+    drawing = DRAWING._replace(elements=(*DRAWING.elements, wild), elements_in=5)
+    with pytest.raises(DocumentError) as caught:
+        approximate_drawing(drawing, DrawingOptions(0.01), DEFAULT_LIMITS)
+    assert caught.value.where == "line#wild"
+    assert "not finite or beyond" in caught.value.reason

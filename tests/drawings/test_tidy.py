@@ -47,6 +47,33 @@ def test_a_control_point_a_rounding_from_its_end_is_put_on_it() -> None:
     assert moved >= done.largest_move * 0.999  # the bound is the true largest move
 
 
+def test_both_inner_control_points_moved_are_bounded_together() -> None:
+    # (0,0) (0,d) (10,d) (10,0): both inner points snap; the curve moves by 3/4·d at t = ½,
+    # more than either alone (4/9·d).
+    d = 4e-4
+    cubic = Cubic((0.0, 0.0), (0.0, d), (10.0, d), (10.0, 0.0))
+    done = tidy([_element(cubic)], snap=5e-4)
+    (segment,) = done.elements[0].subpath.segments
+    assert segment == Line((0.0, 0.0), (10.0, 0.0))  # both inner points on the ends: straight
+    t = np.linspace(0, 1, 10_001)
+    moved = float(np.max(np.abs(_cubic_points(cubic, t)[:, 1])))  # distance to the line y = 0
+    assert moved == pytest.approx(0.75 * d, rel=1e-6)
+    assert done.largest_move >= moved
+
+
+def test_a_quadratic_control_point_moves_to_its_nearer_end_only() -> None:
+    # A short quadratic whose control point is within snap of both ends.
+    quad = Quadratic((0.0, 0.0), (0.6e-4, 0.3e-4), (1e-4, 0.0))
+    done = tidy([_element(quad)], snap=5e-4)
+    (segment,) = done.elements[0].subpath.segments
+    assert segment == Line((0.0, 0.0), (1e-4, 0.0))
+    t = np.linspace(0, 1, 10_001)
+    s = 1 - t
+    p = np.outer(s * s, quad.start) + np.outer(2 * s * t, quad.control) + np.outer(t * t, quad.end)
+    moved = float(np.max(np.abs(p[:, 1])))  # the line is y = 0
+    assert moved <= done.largest_move
+
+
 def test_a_control_point_further_than_snap_stays() -> None:
     cubic = Cubic((0.0, 0.0), (0.0, 1e-3), (1.0, 1.0), (2.0, 0.0))
     done = tidy([_element(cubic)], snap=1e-4)

@@ -27,7 +27,7 @@ from .drawing_outputs import (
     output_of,
     preview_output,
 )
-from .drawing_schemas import DrawingOutput, DrawingRequest, DrawingResponse
+from .drawing_schemas import DrawingOutput, DrawingRequest, DrawingResponse, DxfRequest
 from .errors import ProblemError, RawJSONResponse, problem, problem_responses
 from .preview import SVGResponse, svg_responses
 from .routing import LeanRoute, is_json, json_body, read_body
@@ -38,13 +38,14 @@ from .translate import drawing_problem
 _ADAPTER: TypeAdapter[DrawingRequest] = TypeAdapter(DrawingRequest)
 #: Query parameters of a raw document: the request's fields, and the G-code options.
 _GCODE_FIELDS = frozenset(GcodeRequest.model_fields) - {"units"}
+_DXF_FIELDS = frozenset(DxfRequest.model_fields)
 _FIELDS = frozenset(DrawingRequest.model_fields) - {"document", "encoding", "gcode", "dxf"}
 
 
 def _from_query(query: Mapping[str, str], media_type: str, raw: bytes) -> DrawingRequest:
     """The request of a raw document: its bytes (as base64, so binary DXF fits too), its
     format from the media type (or ``format``), the options from the query string."""
-    unknown = sorted(set(query) - _FIELDS - _GCODE_FIELDS)
+    unknown = sorted(set(query) - _FIELDS - _GCODE_FIELDS - _DXF_FIELDS)
     if unknown:
         raise RequestValidationError(
             [
@@ -58,6 +59,9 @@ def _from_query(query: Mapping[str, str], media_type: str, raw: bytes) -> Drawin
     gcode = {k: v for k, v in query.items() if k in _GCODE_FIELDS}
     if gcode:
         fields["gcode"] = {**gcode, "units": fields.get("units", "mm")}
+    dxf = {k: v for k, v in query.items() if k in _DXF_FIELDS}
+    if dxf:
+        fields["dxf"] = dxf
     fields.setdefault("format", DOCUMENT_MEDIA_TYPES.get(media_type))
     fields["document"] = base64.b64encode(raw).decode()
     fields["encoding"] = "base64"
@@ -111,10 +115,16 @@ _DOCUMENT_BODY: dict[str, Any] = {
             "in": "query",
             "required": False,
             "description": "With a raw document: the field of the same name "
-            + ("of `gcode`." if name in _GCODE_FIELDS else "of the JSON body."),
+            + (
+                "of `gcode`."
+                if name in _GCODE_FIELDS
+                else "of `dxf`."
+                if name in _DXF_FIELDS
+                else "of the JSON body."
+            ),
             "schema": {"type": "string"},
         }
-        for name in sorted(_FIELDS | _GCODE_FIELDS)
+        for name in sorted(_FIELDS | _GCODE_FIELDS | _DXF_FIELDS)
     ],
 }
 

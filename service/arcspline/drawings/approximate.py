@@ -20,6 +20,7 @@ from arcspline.geometry import GeometryError, Limits, StrategyName
 from arcspline.geometry.curves.segments import Path
 from arcspline.geometry.path_spline import PathSpline
 from arcspline.geometry.paths import approximate_path
+from arcspline.geometry.segment_table import check, segment_table
 
 from .affine import Affine, transform_subpath
 from .join import Toolpath, join
@@ -42,6 +43,7 @@ CURVE_FRACTION = 0.1
 _NAMED_SOURCES = 3
 _SUBPATH_FIELD = re.compile(r"path\.subpaths\[(?P<i>\d+)\](?P<rest>.*)")
 _SUBPATH_WORDS = re.compile(r"path\.subpaths\[(?P<i>\d+)\]")
+_ELEMENT_SEGMENT = re.compile(r"path\.subpaths\[(?P<i>\d+)\]\.segments\[(?P<j>\d+)\]")
 
 
 class DrawingOptions(NamedTuple):
@@ -143,6 +145,22 @@ def _named(error: GeometryError, toolpaths: Sequence[Toolpath]) -> GeometryError
     )  # fmt: skip
 
 
+def _check_elements(elements: Sequence[Element]) -> None:
+    """The core's checks of every segment (finite numbers within its range, arcs consistent)
+    before joining and ordering compute with them: a :class:`DocumentError` naming the
+    element and the segment."""
+    owner = [(i, j) for i, e in enumerate(elements) for j in range(len(e.subpath.segments))]
+    table = segment_table([s for e in elements for s in e.subpath.segments])
+    try:
+        check(table, owner)
+    except GeometryError as error:
+        found = _ELEMENT_SEGMENT.fullmatch(error.field)
+        if found is None:  # every check names a segment; a future one might not
+            raise DocumentError("document", error.message) from None
+        element = elements[int(found["i"])]
+        raise DocumentError(element.source, f"segment {found['j']}: {error.message}") from None
+
+
 def _check(options: DrawingOptions) -> None:
     tolerance, join_tolerance = options.tolerance, options.resolved_join_tolerance
     if not (math.isfinite(tolerance) and tolerance > 0.0):
@@ -158,7 +176,8 @@ def approximate_drawing(drawing: Drawing, options: DrawingOptions, limits: Limit
     """The drawing's toolpaths approximated within ``options.tolerance`` of the drawing as
     given (module docstring).
 
-    Raises :class:`DocumentError` for a drawing with nothing to cut, and
+    Raises :class:`DocumentError` for a drawing with nothing to cut or an element the core
+    cannot take (a number beyond its range), and
     :class:`GeometryError` for a bad tolerance or join tolerance, and where the core refuses
     (naming ``toolpaths[i]…`` in cutting order and the elements it was joined from).
     """
@@ -168,6 +187,7 @@ def approximate_drawing(drawing: Drawing, options: DrawingOptions, limits: Limit
     warnings = (*drawing.warnings, *tidied.warnings)
     if not tidied.elements:
         raise _nothing_to_cut(drawing, warnings)
+    _check_elements(tidied.elements)
     joined = join(tidied.elements, options.resolved_join_tolerance)
     if options.order:
         ordered = order(joined.toolpaths, choose_start=options.choose_start)

@@ -6,8 +6,9 @@ Drawing programs write cusps with control points a rounding apart from the end p
 (Inkscape's 1e-6 of a user unit): a curve that turns through a cusp within a few nanometres,
 which no double-precision fit can follow, where the drawing meant the exact cusp the core
 takes. Putting the control point on the end point moves the curve by at most
-``max_t 3t(1 − t)² · |Δ| = 4/9 · |Δ|`` (cubic; ``1/2 · |Δ|`` quadratic, from the Bernstein
-weight of the moved point), reported as the largest move; the fit keeps the rest of the
+``max_t 3t(1 − t)² · |Δ| = 4/9 · |Δ|`` (cubic, ``4/9 · (|Δ₁| + |Δ₂|)`` when both inner points
+move; ``1/2 · |Δ|`` quadratic, whose control point moves to the nearer end only: the
+Bernstein weight of the moved point), reported as the largest move; the fit keeps the rest of the
 tolerance. A cubic whose inner control points both sit on its ends (or both on one end), and
 a quadratic whose control point sits on an end, trace the straight segment between their
 ends exactly: they become that line.
@@ -47,21 +48,22 @@ def _tidy_segment(segment: Segment, snap: float) -> tuple[Segment, float]:
     moved the curve."""
     match segment:
         case Cubic(start, c1, c2, end):
-            move = 0.0
+            moved = 0.0  # |Δ1| + |Δ2|: each weight is at most 4/9, so the sum bounds the move
             if _snapped(c1, start, snap):
-                move = max(move, CUBIC_WEIGHT * math.dist(c1, start))
+                moved += math.dist(c1, start)
                 c1 = start
             if _snapped(c2, end, snap):
-                move = max(move, CUBIC_WEIGHT * math.dist(c2, end))
+                moved += math.dist(c2, end)
                 c2 = end
             straight = c1 in (start, end) and c2 in (start, end)
-            return (Line(start, end) if straight else Cubic(start, c1, c2, end)), move
+            curve = Line(start, end) if straight else Cubic(start, c1, c2, end)
+            return curve, CUBIC_WEIGHT * moved
         case Quadratic(start, control, end):
+            nearer = min((start, end), key=lambda p: math.dist(control, p))
             move = 0.0
-            for end_point in (start, end):
-                if _snapped(control, end_point, snap):
-                    move = QUADRATIC_WEIGHT * math.dist(control, end_point)
-                    control = end_point
+            if _snapped(control, nearer, snap):
+                move = QUADRATIC_WEIGHT * math.dist(control, nearer)
+                control = nearer
             straight = control in (start, end)
             return (Line(start, end) if straight else Quadratic(start, control, end)), move
     return segment, 0.0

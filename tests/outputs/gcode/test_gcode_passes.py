@@ -80,9 +80,10 @@ def test_a_closed_part_plunges_in_place_and_an_open_one_goes_back_to_its_start()
 def test_the_header_says_how_many_passes() -> None:
     text = _write(**DEPTHS, step_down=0.5, comments=True, decimals=3)
     program = gcode_reader.read(text)
-    assert "depth: 3 passes of at most 0.500 mm down to Z-1.200, each cutting every path" in (
-        program.comments
-    )
+    assert (
+        "depth: 3 passes of at most 0.500 mm down to Z-1.200, "
+        "every pass of a path before the next path"
+    ) in program.comments
     single = gcode_reader.read(_write(**DEPTHS, step_down=2.0, comments=True))
     assert not any(c.startswith("depth:") for c in single.comments)
 
@@ -140,6 +141,9 @@ def test_rs274_at_its_strictest_accepts_programs_with_passes(
         ({"safe_z": 5.0, "cut_z": 0.0, "step_down": 0.5}, "cut_z", "below the stock top"),
         ({"safe_z": 5.0, "cut_z": 1.0, "step_down": 0.5}, "cut_z", "below the stock top"),
         ({"safe_z": 5.0, "cut_z": -10.0, "step_down": 0.001}, "step_down", "10000 passes"),
+        # rapids at safe_z would run through the stock
+        ({"safe_z": -1.0, "cut_z": -3.0, "step_down": 1.0}, "safe_z", "above the stock top"),
+        ({"safe_z": 0.0, "cut_z": -3.0, "step_down": 1.0}, "safe_z", "above the stock top"),
     ],
 )
 def test_bad_step_downs_are_refused_naming_the_field(
@@ -149,6 +153,23 @@ def test_bad_step_downs_are_refused_naming_the_field(
         GcodeOptions(feed_rate=600.0, **settings)
     assert caught.value.field == field
     assert words in caught.value.message
+
+
+@pytest.mark.parametrize(
+    ("step", "cut_z", "first_ulps"),
+    [(0.29, -1.0, -2900), (0.00015, -0.001, -1), (0.00006, -0.001, None)],
+)
+def test_a_pass_is_never_deeper_than_the_step(
+    step: float, cut_z: float, first_ulps: int | None
+) -> None:
+    # The step is rounded down to the last decimal (4 in mm): 0.00015 cuts 0.0001 a pass;
+    # 0.29 stays 0.29 (its binary value is 0.28999999999999998); 0.00006 is below one unit.
+    settings: dict[str, Any] = {"safe_z": 5.0, "cut_z": cut_z, "step_down": step}
+    if first_ulps is None:
+        with pytest.raises(GcodeError, match="one unit"):
+            GcodeOptions(feed_rate=600.0, **settings)
+        return
+    assert GcodeOptions(feed_rate=600.0, **settings).pass_levels[0] == first_ulps
 
 
 def test_a_thousand_passes_are_allowed() -> None:

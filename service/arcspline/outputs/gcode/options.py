@@ -150,7 +150,7 @@ class GcodeOptions:
                 "step_down", f"must be a finite number > 0 and below {MAX_COORDINATE:g}"
             )
         d = self.resolved_decimals
-        if round(step * 10**d) < 1:
+        if self._step_ulps < 1:
             raise GcodeError(
                 "step_down", f"must be at least one unit in the last of {d} decimals, got {step:g}"
             )
@@ -159,14 +159,28 @@ class GcodeOptions:
                 "cut_z",
                 f"must lie below the stock top Z0 when step_down is given, got {self.cut_z:g}",
             )
+        if round(self.safe_z * 10**d) <= 0:
+            # Rapids run at safe_z: at or below the stock top they would cut through it.
+            raise GcodeError(
+                "safe_z",
+                f"must lie above the stock top Z0 when step_down is given, got {self.safe_z:g}",
+            )
         # ceil(-cut_z / step) in units of the last place: counted before any level is made.
-        passes = -(round(self.cut_z * 10**d) // round(step * 10**d))
+        passes = -(round(self.cut_z * 10**d) // self._step_ulps)
         if passes > MAX_PASSES:
             raise GcodeError(
                 "step_down",
                 f"{step:g} {self.units} down to cut_z {self.cut_z:g} takes {passes} passes, "
                 f"more than {MAX_PASSES}",
             )
+
+    @property
+    def _step_ulps(self) -> int:
+        """``step_down`` in units of the last decimal place, rounded down (a pass is never
+        deeper than asked); the inner rounding absorbs binary noise (0.29 · 10⁴ =
+        2899.9999999999995)."""
+        assert self.step_down is not None
+        return math.floor(round(float(self.step_down) * 10.0**self.resolved_decimals, 6))
 
     @property
     def pass_levels(self) -> tuple[int, ...]:
@@ -179,7 +193,7 @@ class GcodeOptions:
         bottom = round(self.cut_z * scale)
         if self.step_down is None:
             return (bottom,)
-        step = round(self.step_down * scale)
+        step = self._step_ulps
         # ceil(-bottom / step) passes, in integers; bounded before the tuple is built.
         passes = min(-(bottom // step), MAX_PASSES + 1)
         return (*(-k * step for k in range(1, passes)), bottom)

@@ -40,11 +40,10 @@ def _header(plans: Sequence[Plan], parts: Sequence[Part], options: GcodeOptions)
     )
     levels = options.pass_levels
     if len(levels) > 1:
-        assert options.step_down is not None
-        step = fixed_point(round(options.step_down * 10**d), d)
+        step = fixed_point(-levels[0], d)  # the first pass is one step below Z0
         yield (
             f"(depth: {len(levels)} passes of at most {step} {units} down to "
-            f"Z{fixed_point(levels[-1], d)}, each cutting every path)"
+            f"Z{fixed_point(levels[-1], d)}, every pass of a path before the next path)"
         )
 
 
