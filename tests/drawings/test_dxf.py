@@ -8,6 +8,7 @@ import io
 import itertools
 import math
 import re
+import sys
 from collections import Counter
 from pathlib import Path
 
@@ -19,6 +20,7 @@ from arcspline.drawings.dxf import read_dxf
 from arcspline.drawings.model import DocumentError, DocumentLimits, Drawing
 from arcspline.geometry.curves.segments import CircularArc, Cubic, EllipticalArc, Line
 from arcspline.geometry.segment_table import check, segment_table
+from tests.drawings.test_dxf_spline import far_conic
 from tests.support.corpus import corpus_files
 from tests.support.nurbs_oracle import Curve, cubic_chain, hausdorff, nurbs, one_sided
 
@@ -489,3 +491,159 @@ def test_curve_tolerance_must_be_a_positive_number() -> None:
         with pytest.raises(DocumentError) as error:
             read_dxf(data, curve_tolerance_mm=bad)
         assert error.value.where == "curve_tolerance_mm"
+
+
+# --- hostile numbers: each entity warned and counted, never a crash ---------------------------
+
+
+def _nan_spacing(doc: ezdxf.document.Drawing) -> None:
+    doc.blocks.new("B").add_line((0, 0), (1, 0))
+    doc.modelspace().add_blockref("B", (0, 0)).grid(size=(3, 3), spacing=(math.nan, 1.0))
+
+
+HOSTILE = {
+    "ARC end angle inf": ("ARC", lambda d: d.modelspace().add_arc((0, 0), 1, 0, math.inf)),
+    "ARC start angle NaN": ("ARC", lambda d: d.modelspace().add_arc((0, 0), 1, math.nan, 90)),
+    "CIRCLE radius inf": ("CIRCLE", lambda d: d.modelspace().add_circle((0, 0), math.inf)),
+    "LINE NaN point": ("LINE", lambda d: d.modelspace().add_line((math.nan, 0), (1, 1))),
+    "MINSERT NaN spacing": ("INSERT", _nan_spacing),
+    "LWPOLYLINE inf bulge": (
+        "LWPOLYLINE",
+        lambda d: d.modelspace().add_lwpolyline([(0, 0, 0, 0, math.inf), (1, 0)], "xyseb"),
+    ),
+    "SPLINE NaN weight": (
+        "SPLINE",
+        lambda d: d.modelspace().add_rational_spline(
+            [(0, 0), (1, 1), (2, 0), (3, 1)], [1, math.nan, 1, 1], degree=3
+        ),
+    ),
+}
+
+
+@pytest.mark.parametrize("case", sorted(HOSTILE))
+def test_non_finite_numbers_are_warned_and_counted(case: str) -> None:
+    kind, fill = HOSTILE[case]
+    doc = ezdxf.new("R2000", units=4)
+    doc.modelspace().add_line((5, 5), (6, 5))
+    fill(doc)
+    drawing = read_dxf(dxf_bytes(doc))
+    assert [e.subpath.segments for e in drawing.elements] == [(Line((5.0, 5.0), (6.0, 5.0)),)]
+    assert [(w.element, w.reason, w.occurrences) for w in drawing.warnings] == [
+        (kind, "has a non-finite number", 1)
+    ]
+    assert drawing.elements_in == 2 == len(drawing.elements) + drawing.skipped
+
+
+def test_degenerate_entities_that_made_ezdxf_raise_are_warned() -> None:
+    doc = ezdxf.new("R2000", units=4)
+    msp = doc.modelspace()
+    msp.add_line((5, 5), (6, 5))
+    msp.add_ellipse((0, 0), (1, 0, 0), 0.5)
+    msp.add_spline(fit_points=[(0, 0), (0, 0), (0, 0)])
+    text = dxf_bytes(doc).decode()
+    # the ELLIPSE's major axis (1, 0) set to (0, 0): ezdxf cannot write it so
+    text, count = re.subn(r"(\n 11\n)1\.0(\n 21\n0\.0\n)", r"\g<1>0.0\g<2>", text)
+    assert count == 1
+    drawing = read_dxf(text.encode())
+    assert len(drawing.elements) == 1
+    reasons = {w.element: w.reason for w in drawing.warnings}
+    assert "zero axis" in reasons["ELLIPSE"]
+    assert "coincident consecutive fit points" in reasons["SPLINE"]
+    assert drawing.elements_in == 3 == len(drawing.elements) + drawing.skipped
+
+
+def test_unknown_insunits_code_is_millimetres_with_a_note() -> None:
+    doc = ezdxf.new("R2000")
+    doc.header["$INSUNITS"] = 99
+    doc.modelspace().add_line((0, 0), (1, 1))
+    drawing = read_dxf(dxf_bytes(doc))
+    assert drawing.units == "mm"
+    assert drawing.elements[0].subpath.segments == (Line((0.0, 0.0), (1.0, 1.0)),)
+    assert [(w.reason, w.occurrences) for w in drawing.warnings] == [
+        ("declares unknown units ($INSUNITS 99): millimetres taken", 0)
+    ]
+
+
+def test_an_unexpected_exception_is_that_entitys_warning(monkeypatch: pytest.MonkeyPatch) -> None:
+    # fault injection: whatever ezdxf or our conversion raises for one entity (here the CIRCLE,
+    # and the placement of the INSERT) becomes that entity's warning, counted once
+    import arcspline.drawings.dxf as dxf_module
+
+    real_shape = dxf_module.entity_shape
+
+    def shape(entity, kind, tolerance):  # type: ignore[no-untyped-def]
+        if kind == "CIRCLE":
+            raise KeyError("boom " * 40)
+        return real_shape(entity, kind, tolerance)
+
+    def placement(*args):  # type: ignore[no-untyped-def]
+        raise OverflowError("math range error")
+
+    monkeypatch.setattr(dxf_module, "entity_shape", shape)
+    doc = ezdxf.new("R2000", units=4)
+    doc.modelspace().add_circle((0, 0), 1)
+    doc.modelspace().add_line((0, 0), (1, 0))
+    doc.blocks.new("B").add_line((0, 0), (1, 0))
+    doc.modelspace().add_blockref("B", (0, 0))
+    drawing = read_dxf(dxf_bytes(doc))
+    assert len(drawing.elements) == 2  # the line, and the block's line
+    (warning,) = drawing.warnings
+    assert warning.element == "CIRCLE"
+    assert warning.reason.startswith("could not be read (KeyError: 'boom boom")
+    assert len(warning.reason) < 120
+    monkeypatch.setattr(dxf_module, "entity_shape", real_shape)
+    monkeypatch.setattr(dxf_module, "insert_placement", placement)
+    drawing = read_dxf(dxf_bytes(doc))
+    assert [(w.element, w.reason, w.occurrences) for w in drawing.warnings] == [
+        ("INSERT", "could not be read (OverflowError: math range error)", 1)
+    ]
+    assert drawing.elements_in == 3 == len(drawing.elements) + drawing.skipped
+
+
+# --- far from the origin -----------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("offset", [1e4, 1e6])
+def test_rational_cubic_far_from_the_origin_is_within_the_reported_bound(offset: float) -> None:
+    # /tmp/rv/conic.py's case: a cubic 6e-6…6e-4 of a weight from a conic, read as one arc
+    # with errors of 0.04…432 mm reported as 0 while the conic test grew with the offset
+    points, weights = far_conic(offset, 0.6e-9)
+    doc = ezdxf.new("R2000", units=4)
+    doc.modelspace().add_rational_spline([(*p, 0.0) for p in points], weights, degree=3)
+    data = dxf_bytes(doc)
+    refused = read_dxf(data)
+    assert not refused.elements
+    assert "not an elevated conic" in refused.warnings[0].reason
+    drawing = read_dxf(data, curve_tolerance_mm=1e-4)
+    (element,) = drawing.elements
+    assert all(isinstance(s, Cubic) for s in element.subpath.segments)
+    assert 0.0 < drawing.approximated_mm <= 1e-4
+    # the file's own numbers, read back by ezdxf, evaluated by the Cox–de Boor oracle
+    (entity,) = ezdxf.read(io.StringIO(data.decode())).modelspace()
+    exact = nurbs(
+        [tuple(p) for p in entity.control_points], list(entity.knots), 3, list(entity.weights)
+    )
+    measured = hausdorff(exact, cubic_chain(element.subpath.segments))
+    assert measured <= drawing.approximated_mm
+
+
+def test_closing_a_spline_is_reported_in_the_approximation_bound() -> None:
+    # a cubic loop 1e6 mm out, extent 10 mm, its end 5e-9 mm from its start: closed, and the
+    # move carried by approximated_mm with a note (it used to be dropped unless a rational
+    # cubic had been approximated)
+    o = 1e6
+    points = [(o, o, 0.0), (o + 10, o + 10, 0.0), (o - 10, o + 10, 0.0), (o + 5e-9, o, 0.0)]
+    doc = ezdxf.new("R2000", units=4)
+    doc.modelspace().add_open_spline(points, degree=3)
+    drawing = read_dxf(dxf_bytes(doc))
+    (element,) = drawing.elements
+    assert element.subpath.closed
+    gap = math.dist(points[0][:2], points[3][:2])
+    # plus the rounding of the map to millimetres: 16 ulps of 1e6, 3.6e-9
+    assert (
+        gap <= drawing.approximated_mm <= gap * (1 + 1e-9) + 16 * sys.float_info.epsilon * (o + 20)
+    )
+    (note,) = drawing.warnings
+    assert note.element == "SPLINE"
+    assert "closed by moving its end onto its start" in note.reason
+    assert note.occurrences == 0

@@ -24,7 +24,7 @@ from arcspline.geometry.curves.segments import (
     Segment,
 )
 from arcspline.geometry.spline import Point
-from tests.support.nurbs_oracle import cubic_chain, hausdorff, nurbs
+from tests.support.nurbs_oracle import cubic_chain, hausdorff, nurbs, rational_bezier
 
 
 def bezier(points: list[tuple[float, float]], t: float) -> tuple[float, float]:
@@ -239,3 +239,93 @@ def test_rational_cubic_beyond_the_cubic_budget_is_refused() -> None:
         spline_segments(data(points, [0] * 4 + [1] * 4, [1.0, 3.0, 0.5, 2.0]), 1e-12)
     with pytest.raises(SplineRefusedError, match="no curve tolerance"):
         spline_segments(data(points, [0] * 4 + [1] * 4, [1.0, 3.0, 0.5, 2.0]))
+
+
+# --- lowering and closing are relative to the piece, not to the origin -------------------------
+
+
+def far_conic(offset: float, perturbation: float) -> tuple[list[tuple[float, float]], list[float]]:
+    """The quarter circle of radius 10 about (offset, offset) as a rational cubic (the
+    quadratic (R,0),(R,R),(0,R) with weights 1, √½, 1 elevated), its third weight raised by
+    ``perturbation`` times its largest homogeneous coordinate (the old, origin-relative
+    tolerance was 1e-9 of that): a rational cubic that is not a conic."""
+    r, w = 10.0, math.sqrt(0.5)
+    g = [(r, 0.0, 1.0), (r * w, r * w, w), (0.0, r, 1.0)]
+    h = [g[0], *(tuple((a + 2 * b) / 3 for a, b in zip(g[0], g[1], strict=True)),)]
+    h += [tuple((2 * b + c) / 3 for b, c in zip(g[1], g[2], strict=True)), g[2]]
+    h = [(x + offset * s, y + offset * s, s) for x, y, s in h]
+    size = max(abs(c) for p in h for c in p)
+    h[2] = (h[2][0], h[2][1], h[2][2] + perturbation * size)
+    return [(x / s, y / s) for x, y, s in h], [s for _, _, s in h]
+
+
+@pytest.mark.parametrize("offset", [0.0, 1e4, 1e5, 1e6])
+def test_a_cubic_near_a_conic_is_not_lowered_far_from_the_origin(offset: float) -> None:
+    points, weights = far_conic(offset, 0.6e-9)
+    knots = [0] * 4 + [1] * 4
+    with pytest.raises(SplineRefusedError, match="not an elevated conic"):
+        spline_segments(data(points, knots, weights))
+    result = spline_segments(data(points, knots, weights), 1e-4)
+    assert all(isinstance(s, Cubic) for s in result.segments)
+    assert 0.0 < result.approximated <= 1e-4
+    # the true curve by the Bernstein formula, in coordinates relative to the offset (exact:
+    # the offset is a whole number), against the cubics moved the same way
+    local = [(x - offset, y - offset) for x, y in points]
+    moved = [
+        Cubic(*(Point(p[0] - offset, p[1] - offset) for p in control(c))) for c in result.segments
+    ]
+    measured = hausdorff(rational_bezier(local, weights), cubic_chain(moved))
+    assert measured <= result.approximated
+
+
+def test_an_elevated_conic_is_lowered_wherever_it_lies_exactly() -> None:
+    # the quadratic (0,0), (2,4), (4,0) with weights 1, ½, 1 (an ellipse arc) elevated by hand:
+    # H1 = (G0 + 2·G1)/3 = (2/3, 4/3, 2/3), H2 = (2·G1 + G2)/3 = (2, 4/3, 2/3), i.e. points
+    # (1, 2), (3, 2) of weight ⅔. Offsets that are whole numbers keep every point exact, so
+    # the piece relative to itself is the same wherever it lies: lowered each time.
+    weights = [1.0, 2 / 3, 2 / 3, 1.0]
+    conic = rational_bezier([(0.0, 0.0), (2.0, 4.0), (4.0, 0.0)], [1.0, 0.5, 1.0])
+    for offset in (0.0, 1e6, 2.0**40):
+        points = [(offset + x, offset + y) for x, y in ((0, 0), (1, 2), (3, 2), (4, 0))]
+        result = spline_segments(data(points, [0] * 4 + [1] * 4, weights))
+        (arc,) = result.segments
+        assert isinstance(arc, EllipticalArc | CircularArc)
+        assert result.approximated == 0.0
+        assert arc.start == points[0]
+        assert arc.end == points[3]
+        for x, y in conic(np.linspace(0, 1, 41)):
+            # to the rounding of the coordinates (their ulp is 2.2e-16 of the offset)
+            assert abs(on_conic(arc, x + offset, y + offset)) < 1e-12 + 1e-15 * offset
+
+
+def test_closing_snap_is_relative_to_the_extent_and_reported() -> None:
+    knots = [0] * 4 + [1] * 4
+    for offset in (0.0, 1e6):
+        # a loop of extent 10 whose end misses its start by 2e-9: within 1e-9 of 10, closed
+        near = [(offset, offset), (offset + 10, offset + 10), (offset - 10, offset + 10),
+                (offset + 2e-9, offset)]  # fmt: skip
+        gap = math.dist(near[0], near[3])
+        result = spline_segments(data(near, knots))
+        assert result.closed
+        assert result.segments[-1].end == result.segments[0].start
+        assert result.approximating == 0
+        assert result.approximated == gap > 0.0
+        # 1e-6 off: 1e-7 of the extent, not closed (the old test, relative to 1e6, took it)
+        far = [*near[:3], (offset + 1e-6, offset)]
+        opened = spline_segments(data(far, knots))
+        assert not opened.closed
+        assert opened.approximated == 0.0
+        assert opened.segments[-1].end == far[3]
+
+
+def test_knot_multiplicity_is_counted_in_one_pass() -> None:
+    # 60 000 control points: the count was quadratic (18.9 s at 32 000); now linear
+    n = 60_000
+    points = [(float(i), float((i * 7919) % 13)) for i in range(n)]
+    knots = [0.0] * 4 + [float(i) for i in range(1, n - 3)] + [float(n - 3)] * 4
+    result = spline_segments(data(points, knots))
+    assert len(result.segments) == n - 3
+    assert result.segments[0].start == points[0]
+    assert result.segments[-1].end == points[-1]
+    with pytest.raises(SplineRefusedError, match="knot 5 repeats 4 times"):
+        spline_segments(data(points[:12], [0, 0, 0, 0, 1, 2, 3, 4, 5, 5, 5, 5, 6, 6, 6, 6]))

@@ -28,13 +28,22 @@ from ezdxf.xclip import XClip
 from arcspline.geometry.curves.segments import Subpath
 
 from .affine import Affine, SingularMapError, transform_subpath
-from .dxf_entities import NOT_DRAWN, Shape, SkipError, entity_shape
+from .dxf_entities import (
+    NON_FINITE,
+    NOT_DRAWN,
+    Shape,
+    SkipError,
+    entity_shape,
+    finite_entity,
+    finite_numbers,
+)
 from .dxf_load import document_units, load, selected_layers
-from .dxf_placement import array_offsets, insert_placement, stretch
+from .dxf_placement import Placement, array_offsets, insert_placement, stretch
 from .model import DocumentError, DocumentLimits, Drawing, DrawingWarning, Element
 
 if TYPE_CHECKING:
     from ezdxf.entities.dxfgfx import DXFGraphic
+    from ezdxf.layouts.blocklayout import BlockLayout
 
 #: Units in the last place allowed for the rounding of mapping approximating cubics to
 #: millimetres, times their coordinate scale (added to the certified distance).
@@ -50,6 +59,16 @@ class _Context(NamedTuple):
     blocks: tuple[str, ...] = ()
     insert_layer: str | None = None
     hidden: str | None = None
+
+
+class _Reference(NamedTuple):
+    """A block reference ready to walk: its block, the context of its entities (their matrix
+    set per array offset), its placement and its array offsets."""
+
+    block: BlockLayout
+    inner: _Context
+    placement: Placement
+    offsets: list[Affine]
 
 
 def read_dxf(
@@ -164,26 +183,36 @@ class _Reader:
         return None, layer
 
     def visit(self, entity: DXFGraphic, context: _Context) -> None:
-        kind = entity.dxftype()
-        hidden, layer = self.layer_hides(entity, context)
-        hidden = context.hidden or hidden
-        if kind == "INSERT":
-            self.insert(entity, context._replace(hidden=hidden), layer)
+        """One entity reached: drawn, or counted in a warning, whatever it holds. An
+        exception from ezdxf or from our reading of it becomes a warning for that entity
+        alone (its class and message, briefly), so that the accounting stays exact."""
+        if entity.dxftype() == "INSERT":
+            self.insert(entity, context)
             return
         self.reach()
+        kind = entity.dxftype()
+        try:
+            self.entity(entity, kind, context)
+        except SkipError as why:
+            self.skip(kind, str(why))
+        except MemoryError:
+            raise
+        except Exception as exc:  # hostile input: any failure is this entity's
+            self.skip(kind, _unexpected(exc))
+
+    def entity(self, entity: DXFGraphic, kind: str, context: _Context) -> None:
+        """A drawable entity (not a block reference), or :class:`SkipError` saying why not."""
+        hidden, layer = self.layer_hides(entity, context)
+        hidden = context.hidden or hidden
         if hidden is not None:
-            self.skip(kind, hidden)
-        elif self.layers is not None and layer.upper() not in self.layers:
-            self.skip(kind, "not on a selected layer")
-        elif entity.dxf.get("invisible", 0):
-            self.skip(kind, "is invisible")
-        elif kind in NOT_DRAWN:
-            self.skip(kind, NOT_DRAWN[kind])
-        else:
-            try:
-                self.draw(entity, kind, context)
-            except SkipError as why:
-                self.skip(kind, str(why))
+            raise SkipError(hidden)
+        if self.layers is not None and layer.upper() not in self.layers:
+            raise SkipError("not on a selected layer")
+        if entity.dxf.get("invisible", 0):
+            raise SkipError("is invisible")
+        if kind in NOT_DRAWN:
+            raise SkipError(NOT_DRAWN[kind])
+        self.draw(entity, kind, context)
 
     def draw(self, entity: Any, kind: str, context: _Context) -> None:
         """The entity as an element in millimetres; a rational cubic spline is approximated
@@ -200,72 +229,113 @@ class _Reader:
             mapped = transform_subpath(shape.subpath, context.matrix @ shape.plane)
         except SingularMapError as exc:
             raise SkipError("collapses to a line or a point in the XY plane") from exc
+        if not finite_numbers(mapped.segments):
+            raise SkipError(f"{NON_FINITE} once placed and scaled (beyond double precision)")
         if shape.tilted:
             self.note(kind, "is not in a plane parallel to XY: its projection onto XY was drawn")
-        if shape.approximating:
+        if shape.approximated > 0.0 or shape.approximating:
             self.approximated(shape, mapped, mm_per_own)
         self.elements.append(Element(mapped, self.source(entity, kind, context)))
 
     def approximated(self, shape: Shape, mapped: Subpath, mm_per_own: float) -> None:
-        """Notes a spline approximated by cubics, with its certified distance in millimetres:
-        the distance in its own units stretched by the map, plus the rounding of the map."""
+        """Notes a spline approximated by cubics, or closed by moving its end onto its start,
+        with its certified distance in millimetres: the distance in its own units stretched
+        by the map, plus the rounding of the map."""
         points = [v for s in mapped.segments for v in s if isinstance(v, tuple)]
         size_mm = max(abs(c) for point in points for c in point)
         rounding = MAPPING_ULPS * sys.float_info.epsilon * size_mm
         bound_mm = shape.approximated * mm_per_own + rounding
         self.approximated_mm = max(self.approximated_mm, bound_mm)
-        self.note(
-            "SPLINE",
-            f"rational cubic approximated by {shape.approximating} cubics within "
-            f"{_up(bound_mm)} mm (certified)",
-        )
+        if shape.approximating:
+            self.note(
+                "SPLINE",
+                f"rational cubic approximated by {shape.approximating} cubics within "
+                f"{_up(bound_mm)} mm (certified)",
+            )
+        else:
+            # no number in the reason: the splines closed alike are counted in one note
+            self.note(
+                "SPLINE",
+                "closed by moving its end onto its start (counted in the approximation bound)",
+            )
 
     def source(self, entity: DXFGraphic, kind: str, context: _Context) -> str:
         handle = entity.dxf.get("handle")
         name = f"{kind} #{handle}" if handle else kind
         return name + "".join(f" in block {b}" for b in reversed(context.blocks))
 
-    def insert(self, entity: Any, context: _Context, layer: str) -> None:
+    def insert(self, entity: Any, context: _Context) -> None:
         """A block reference (INSERT, or MINSERT: an array of them): the block's entities,
-        each mapped by its placement (``dxf_placement.py``)."""
+        each mapped by its placement (``dxf_placement.py``). A reference that cannot be
+        placed counts as one entity skipped, with the reason (as :meth:`visit`)."""
+        try:
+            reference = self.reference(entity, context)
+        except (DocumentError, MemoryError):
+            raise
+        except SkipError as why:
+            self.reach()
+            self.skip("INSERT", str(why))
+            return
+        except Exception as exc:  # hostile input: any failure is this entity's
+            self.reach()
+            self.skip("INSERT", _unexpected(exc))
+            return
+        block, inner, placement, offsets = reference
+        for offset in offsets:
+            matrix = placement.placed @ offset @ placement.shape
+            for child in block:
+                self.visit(child, inner._replace(matrix=matrix))
+
+    def reference(self, entity: Any, context: _Context) -> _Reference:
+        """What a block reference places: its block, the context of the block's entities
+        (without their matrix), the placement and the array offsets; raises
+        :class:`SkipError` for a reference not drawn, :class:`DocumentError` for one that
+        makes the document unreadable (a cycle, too deep, too many)."""
+        hidden, layer = self.layer_hides(entity, context)
+        hidden = context.hidden or hidden
         name = str(entity.dxf.name)
         where = self.source(entity, "INSERT", context)
         block = self.doc.blocks.get(name)
         for _attrib in entity.attribs:
             self.reach()
-            self.skip("ATTRIB", context.hidden or NOT_DRAWN["ATTRIB"])
+            self.skip("ATTRIB", hidden or NOT_DRAWN["ATTRIB"])
         if block is None:
-            self.reach()
-            self.skip("INSERT", "refers to a block that is not defined")
-            return
+            raise SkipError("refers to a block that is not defined")
         if name in context.blocks:
             raise DocumentError(where, f"block {name!r} refers to itself")
         if len(context.blocks) >= self.limits.max_depth:
             raise DocumentError(where, f"blocks are nested more than {self.limits.max_depth} deep")
+        if not finite_entity(entity):
+            raise SkipError(NON_FINITE)
         if float(entity.dxf.xscale) == 0.0 or float(entity.dxf.yscale) == 0.0:
-            self.reach()
-            self.skip("INSERT", "has scale 0 along x or y: the block collapses")
-            return
+            raise SkipError("has scale 0 along x or y: the block collapses")
         rows, columns = int(entity.dxf.row_count), int(entity.dxf.column_count)
         self.references += max(rows, 1) * max(columns, 1)
         if self.references > self.limits.max_elements:
             raise DocumentError(
                 where, f"block references exceed the limit of {self.limits.max_elements}"
             )
-        if XClip(entity).has_clipping_path:
-            self.note("INSERT", "is clipped (XCLIP): its block was drawn unclipped")
         base = block.block.dxf.base_point if block.block is not None else (0.0, 0.0, 0.0)
         placement = insert_placement(entity, base, context.matrix)
+        offsets = list(array_offsets(entity))
+        if XClip(entity).has_clipping_path:
+            self.note("INSERT", "is clipped (XCLIP): its block was drawn unclipped")
         if placement.tilted:
             self.note("INSERT", "is not in a plane parallel to XY: its projection was drawn")
-        for offset in array_offsets(entity):
-            inner = context._replace(
-                matrix=placement.placed @ offset @ placement.shape,
-                blocks=(*context.blocks, name),
-                insert_layer=layer,
-            )
-            for child in block:
-                self.visit(child, inner)
+        inner = context._replace(blocks=(*context.blocks, name), insert_layer=layer, hidden=hidden)
+        return _Reference(block, inner, placement, offsets)
+
+
+def _unexpected(exc: Exception) -> str:
+    """The reason for an entity whose reading raised ``exc``: its class and message, short."""
+    message = " ".join(str(exc).split())
+    if len(message) > 80:
+        message = message[:77] + "..."
+    return (
+        f"could not be read ({type(exc).__name__}: {message})"
+        if message
+        else (f"could not be read ({type(exc).__name__})")
+    )
 
 
 __all__ = ["read_dxf"]

@@ -5,13 +5,17 @@
 A subpath is in the entity's own coordinates: its OCS plane (``plane``, to be applied by the
 caller with the block and unit maps) or the WCS. Angles that are multiples of 90° give exact
 points.
+
+An entity holding a number that is not finite (a NaN or an infinity in a point, radius,
+angle, scale, spacing, bulge, weight or knot: any number it has) is not drawn, whatever its
+type: such a number has no place in a drawing, and the arithmetic below would carry it on.
 """
 
 from __future__ import annotations
 
 import itertools
 import math
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 from typing import Any, NamedTuple
 
 from arcspline.geometry.curves.segments import CircularArc, Line, Segment, Subpath
@@ -44,6 +48,10 @@ NOT_DRAWN = {
 }  # fmt: skip
 
 
+#: Why an entity holding a NaN or an infinity is not drawn.
+NON_FINITE = "has a non-finite number"
+
+
 class SkipError(Exception):
     """An entity not drawn, and why."""
 
@@ -66,6 +74,8 @@ def entity_shape(entity: Any, kind: str, curve_tolerance: float | None) -> Shape
     """The entity of type ``kind`` as a :class:`Shape`; ``curve_tolerance`` (in the entity's
     own units, None to refuse) bounds the approximation of rational cubic splines. Raises
     :class:`SkipError` saying why for an entity that is not drawn."""
+    if not finite_entity(entity):
+        raise SkipError(NON_FINITE)
     match kind:
         case "LINE":
             start, end = _xy(entity.dxf.start), _xy(entity.dxf.end)
@@ -93,6 +103,37 @@ def entity_shape(entity: Any, kind: str, curve_tolerance: float | None) -> Shape
             return _spline(entity, curve_tolerance)
         case _:
             raise SkipError("this entity type is not read")
+
+
+def finite_entity(entity: Any) -> bool:
+    """Whether every number of the entity is finite: its DXF attributes, and the points,
+    bulges, vertices, knots and weights held outside them."""
+    values: list[object] = list(entity.dxf.all_existing_dxf_attribs().values())
+    match entity.dxftype():
+        case "LWPOLYLINE":
+            values.extend(entity.get_points("xyseb"))
+        case "POLYLINE":
+            values.extend(v.dxf.all_existing_dxf_attribs().values() for v in entity.vertices)
+        case "SPLINE":
+            values.extend((entity.control_points, entity.fit_points, entity.knots))
+            values.append(entity.weights)
+    return finite_numbers(values)
+
+
+def finite_numbers(values: Iterable[object]) -> bool:
+    """Whether every float in ``values``, and in the tuples, vectors and lists nested in them,
+    is finite (text is passed over)."""
+    for value in values:
+        if isinstance(value, float):
+            if not math.isfinite(value):
+                return False
+        elif (
+            isinstance(value, Iterable)
+            and not isinstance(value, str | bytes)
+            and not finite_numbers(value)
+        ):
+            return False
+    return True
 
 
 # --- exact values --------------------------------------------------------------------------
@@ -187,7 +228,12 @@ def _ellipse(entity: Any) -> tuple[Subpath, bool]:
     major and minor (their projections onto XY)."""
     major = entity.dxf.major_axis
     normal = entity.dxf.extrusion
-    minor = normal.cross(major).normalize(major.magnitude * float(entity.dxf.ratio))
+    across = normal.cross(major)
+    if (
+        across.magnitude == 0.0
+    ):  # a zero major axis, or one along the extrusion: no plane to draw in
+        raise SkipError("has a zero axis (or lies edge-on to the XY plane)")
+    minor = across.normalize(major.magnitude * float(entity.dxf.ratio))
     center = entity.dxf.center
     m = Affine(major.x, major.y, minor.x, minor.y, center.x, center.y)
     start, end = float(entity.dxf.start_param), float(entity.dxf.end_param)

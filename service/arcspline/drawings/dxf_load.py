@@ -131,14 +131,17 @@ def document_units(doc: EzDrawing, has_header: bool, override: str | None) -> Un
         return Units(name, MM_PER_UNIT[name], None)
     if code in INSUNITS_EXTRA_MM:
         return Units(*INSUNITS_EXTRA_MM[code], None)
+    unknown = Units("mm", 1.0, f"declares unknown units ($INSUNITS {code}): millimetres taken")
+    if code not in {unit.value for unit in InsertUnits}:
+        return unknown  # ezdxf.units.decode indexes a list with the code: check it first
     try:
         return Units(
             ezdxf.units.decode(code) or str(code),
             ezdxf.units.conversion_factor(InsertUnits(code), InsertUnits.Millimeters),
             None,
         )
-    except (ValueError, KeyError, TypeError):
-        return Units("mm", 1.0, f"declares unknown units ($INSUNITS {code}): millimetres taken")
+    except (ValueError, KeyError, TypeError, IndexError, ArithmeticError):
+        return unknown
 
 
 def selected_layers(doc: EzDrawing, layers: Sequence[str] | None) -> frozenset[str] | None:

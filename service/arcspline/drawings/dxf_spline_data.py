@@ -13,6 +13,7 @@ vector. Each departure from the plain reading is said in a note.
 
 from __future__ import annotations
 
+import itertools
 from typing import TYPE_CHECKING
 
 from arcspline.geometry.spline import Point
@@ -53,9 +54,13 @@ def spline_data(entity: Spline) -> tuple[SplineData, tuple[str, ...]]:
                 f"points make degree {degree}; the knots were trusted"
             )
     elif len(entity.fit_points):
+        fit = [tuple(p) for p in entity.fit_points]
+        if any(p == q for p, q in itertools.pairwise(fit)):
+            # ezdxf's chord-length parameters divide by the distance between them
+            raise SplineRefusedError("has coincident consecutive fit points: not interpolated")
         try:
             tool = entity.construction_tool()
-        except (ValueError, ZeroDivisionError, ArithmeticError) as exc:
+        except (ValueError, ZeroDivisionError, ArithmeticError, IndexError) as exc:
             raise SplineRefusedError(f"its fit points cannot be interpolated ({exc})") from exc
         notes.append(
             "given by fit points only: interpolated by ezdxf, which may differ from the "
