@@ -647,3 +647,19 @@ def test_closing_a_spline_is_reported_in_the_approximation_bound() -> None:
     assert note.element == "SPLINE"
     assert "closed by moving its end onto its start" in note.reason
     assert note.occurrences == 0
+
+
+def test_a_block_reference_bomb_is_refused_by_its_segments() -> None:
+    # A block of one 1000-segment polyline, inserted 20 times: 20 000 segments against a
+    # limit of 10 000 — refused while reading, naming where the limit was crossed.
+    doc = ezdxf.new("R2000")
+    block = doc.blocks.new("LONG")
+    block.add_lwpolyline([(k, k % 2) for k in range(1001)])
+    for k in range(20):
+        doc.modelspace().add_blockref("LONG", (0, 10 * k))
+    stream = io.StringIO()
+    doc.write(stream)
+    content = stream.getvalue().encode()
+    with pytest.raises(DocumentError, match=r"more than 10000 segments.*LWPOLYLINE"):
+        read_dxf(content, limits=DocumentLimits(max_segments=10_000))
+    assert len(read_dxf(content, limits=DocumentLimits(max_segments=20_000)).elements) == 20

@@ -140,6 +140,8 @@ def _job(body: DrawingRequest, request: Request, outputs: tuple[Output, ...]) ->
         max_bytes=settings.max_body_bytes,
         max_elements=settings.drawing_max_elements,
         max_depth=settings.drawing_max_depth,
+        # Every input segment gives at least one output segment: more cannot be cut.
+        max_segments=settings.drawing_max_segments,
     )
     return DrawingJob(body.spec(content, limits), body.options(), outputs)
 

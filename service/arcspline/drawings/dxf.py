@@ -136,6 +136,7 @@ class _Reader:
         self.skipped: Counter[tuple[str, str]] = Counter()
         self.notes: Counter[tuple[str, str]] = Counter()
         self.count = 0
+        self.segments = 0
         self.references = 0
         self.approximated_mm = 0.0
 
@@ -195,7 +196,7 @@ class _Reader:
             self.entity(entity, kind, context)
         except SkipError as why:
             self.skip(kind, str(why))
-        except MemoryError:
+        except (MemoryError, DocumentError):  # the whole document's limits, not this entity's
             raise
         except Exception as exc:  # hostile input: any failure is this entity's
             self.skip(kind, _unexpected(exc))
@@ -223,6 +224,15 @@ class _Reader:
         if tolerance is not None and mm_per_own > 0.0:
             tolerance /= mm_per_own
         shape = entity_shape(entity, kind, tolerance)
+        # Counted before mapping, every block instance again: a block of a long polyline
+        # inserted many times is refused before it is drawn.
+        self.segments += len(shape.subpath.segments)
+        if self.segments > self.limits.max_segments:
+            raise DocumentError(
+                "document",
+                f"has more than {self.limits.max_segments} segments, every block reference "
+                f"counted (the limit is crossed at {self.source(entity, kind, context)})",
+            )
         for note in shape.notes:
             self.note(kind, note)
         try:

@@ -62,11 +62,19 @@ class Drawing(NamedTuple):
 
 
 class DocumentLimits(NamedTuple):
-    """Bounds on what a reader accepts before it refuses a document."""
+    """Bounds on what a reader accepts before it refuses a document.
+
+    ``max_bytes``: the document's size; ``max_elements``: elements, each ``use`` or block
+    instance counted again; ``max_depth``: nesting of groups, uses and blocks;
+    ``max_segments``: segments read, over all elements and every instance of a referenced
+    one (a small file can draw one long path many times over: a reference bomb). A reader
+    refuses a document as soon as it crosses one, before spending the memory.
+    """
 
     max_bytes: int = 16 * 1024 * 1024
     max_elements: int = 100_000
     max_depth: int = 64
+    max_segments: int = 1_000_000
 
 
 class DocumentError(ValueError):

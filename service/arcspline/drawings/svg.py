@@ -12,7 +12,14 @@ one; each drawable element not drawn (a shape, ``text``, ``image``, ``foreignObj
 unknown SVG element, a ``use`` whose reference is missing) counts one in a warning. Not
 drawn and said so: ``display:none`` (attribute or ``style``; every drawable element under
 it), ``visibility:hidden``/``collapse`` (:mod:`.svg_style`), a transform that collapses the
-plane, a shape of zero size, a zero-size nested viewport. Not drawn and not counted, as they
+plane, a shape of zero size, a zero-size nested viewport, and a shape with a number that is
+not finite once computed (finite numbers written whose sum, product or map overflows: what
+is drawn is always finite; a number written beyond the float range is a syntax error).
+
+Limits (:class:`DocumentLimits`): elements and depth as ``use`` instances expand, and
+segments (``max_segments``), counted before each shape's segments are mapped so a reference
+bomb is refused before its memory is spent; a shape under a ``use`` is read once and its
+subpaths (in its own numbers) reused by every instance. Not drawn and not counted, as they
 are not the drawing (:mod:`.svg_elements`): the contents of ``defs``, ``symbol`` (unless
 used), ``clipPath``, ``mask``, ``pattern``, ``marker``, gradients, filters, metadata, the
 alternatives a ``switch`` does not choose and elements of other namespaces (Inkscape's
@@ -22,8 +29,11 @@ nothing (a size in %, a clip path not applied, stylesheets not read).
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterator
 from typing import Final, NamedTuple
+
+from arcspline.geometry.curves.segments import Subpath
 
 from .affine import Affine, transform_subpath
 from .model import DocumentError, DocumentLimits, Drawing, DrawingWarning, Element
@@ -45,6 +55,7 @@ __all__ = ["read_svg"]
 
 XLINK_HREF: Final = "{http://www.w3.org/1999/xlink}href"
 _DISPLAY_NONE: Final = "display:none: not drawn"
+_NON_FINITE: Final = "has a non-finite number (its coordinates or transform overflow): not drawn"
 
 
 def read_svg(
@@ -63,6 +74,8 @@ def read_svg(
     if not root.svg or root.tag != "svg":
         raise DocumentError("document", f"the root element is {root.name}, not an svg element")
     frame = _frame(root, units)
+    if not _finite_map(frame.to_mm):
+        raise DocumentError(root.source, "its size and viewBox give a scale that is not finite")
     walk = _Walk(root, limits)
     for note in frame.notes:
         walk.warnings.add(root.source, note, 0)
@@ -123,6 +136,10 @@ class _Walk:
         self.warnings = _Warnings()
         self.elements_in = 0
         self.visited = 0
+        self.segments = 0
+        #: Each used shape's subpaths in its own numbers, by (node, viewport), and whether
+        #: they are finite: every instance transforms them without reading the shape again.
+        self.used_shapes: dict[tuple[int, Viewport], tuple[tuple[Subpath, ...], bool]] = {}
         self.ids: dict[str, Node] = {}
         for node in descendants(root):
             self.ids.setdefault(node.attrib.get("id", ""), node)
@@ -233,19 +250,51 @@ class _Walk:
     # ---- drawing and accounting
 
     def shape(self, node: Node, item: _Item) -> None:
+        """Draws a shape, or warns about it: hidden, of zero size, with a number that is not
+        finite (its own, its map's, or one that overflows once mapped), or collapsed."""
         if not item.visible:
             self.warn(node, "visibility:hidden: not drawn")
             return
-        subpaths = shape_subpaths(node, item.viewport)
+        subpaths, finite = self.shape_subpaths(node, item)
         if not subpaths:
             self.warn(node, f"{node.tag} of zero size or without data: not drawn")
+            return
+        if not (finite and _finite_map(item.ctm)):
+            self.warn(node, _NON_FINITE)
             return
         if item.ctm.is_singular():
             self.warn(node, "its transform collapses the plane (a zero scale): not drawn")
             return
-        for subpath in subpaths:
-            self.elements_in += 1
-            self.elements.append(Element(transform_subpath(subpath, item.ctm), node.source))
+        self.count_segments(node, subpaths)
+        drawn = [transform_subpath(subpath, item.ctm) for subpath in subpaths]
+        if not all(map(_finite_subpath, drawn)):
+            self.warn(node, _NON_FINITE)
+            return
+        self.elements_in += len(drawn)
+        self.elements.extend(Element(subpath, node.source) for subpath in drawn)
+
+    def shape_subpaths(self, node: Node, item: _Item) -> tuple[tuple[Subpath, ...], bool]:
+        """The shape's subpaths in its own numbers and whether they are all finite; read
+        once for a shape under a ``use`` (a reference bomb draws one path many times)."""
+        key = (id(node), item.viewport)
+        known = self.used_shapes.get(key) if item.chain else None
+        if known is None:
+            subpaths = shape_subpaths(node, item.viewport)
+            known = (subpaths, all(map(_finite_subpath, subpaths)))
+            if item.chain:
+                self.used_shapes[key] = known
+        return known
+
+    def count_segments(self, node: Node, subpaths: tuple[Subpath, ...]) -> None:
+        """Refuses the document once its segments, every instance counted, cross the limit,
+        before they are mapped (``DocumentLimits.max_segments``)."""
+        self.segments += sum(len(subpath.segments) for subpath in subpaths)
+        if self.segments > self.limits.max_segments:
+            raise DocumentError(
+                "document",
+                f"more than {self.limits.max_segments} segments, every use of an element "
+                f"counted (the limit is crossed at {node.source})",
+            )
 
     def warn(self, node: Node, reason: str) -> None:
         """One drawable element not drawn, for ``reason``."""
@@ -261,3 +310,21 @@ class _Walk:
         if count:
             self.elements_in += count
             self.warnings.add(node.source, reason, count)
+
+
+def _finite_map(m: Affine) -> bool:
+    """The map's numbers and its determinant are finite (a map whose determinant overflows
+    cannot be told from a singular one)."""
+    return all(map(math.isfinite, m)) and math.isfinite(m.determinant)
+
+
+def _finite_subpath(subpath: Subpath) -> bool:
+    """Every number of every segment (points and arc parameters) is finite."""
+    for segment in subpath.segments:
+        for value in segment:
+            if isinstance(value, tuple):
+                if not (math.isfinite(value[0]) and math.isfinite(value[1])):
+                    return False
+            elif not math.isfinite(value):
+                return False
+    return True

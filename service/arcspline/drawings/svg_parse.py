@@ -5,11 +5,13 @@ expand without bound or read files); a plain DOCTYPE is allowed, as Illustrator 
 write one. The document is fed in chunks to a tree builder that keeps each element's line,
 counts elements and depth as they arrive (XML 1.0 §3, "element"), and refuses a document over
 its :class:`DocumentLimits` before building more of it. Text content is dropped: the reader
-draws no text.
+draws no text. A declared encoding the parser cannot decode (unknown, multi-byte other than
+UTF-8 and UTF-16, or not a text codec) is refused by name.
 """
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable
 from typing import Final
 from xml.etree.ElementTree import ParseError
@@ -24,6 +26,9 @@ __all__ = ["SVG_NS", "Node", "parse_svg"]
 SVG_NS: Final = "http://www.w3.org/2000/svg"
 #: Bytes (or characters) fed to the parser at a time: the limits are checked between them.
 CHUNK_BYTES: Final = 1 << 16
+#: Characters read for the XML declaration's encoding (XML 1.0 §4.3.3), for error messages.
+_DECLARATION_CHARS: Final = 200
+_ENCODING: Final = re.compile(r"""<\?xml[^>]*?\bencoding\s*=\s*["']([^"']{1,40})["']""")
 
 
 class Node:
@@ -59,6 +64,8 @@ def parse_svg(document: bytes | str, limits: DocumentLimits) -> Node:
         for i in range(0, len(document), CHUNK_BYTES):
             parser.feed(document[i : i + CHUNK_BYTES])
         root = parser.close()
+    except DocumentError:
+        raise
     except EntitiesForbidden as error:
         raise DocumentError(
             "document",
@@ -77,9 +84,24 @@ def parse_svg(document: bytes | str, limits: DocumentLimits) -> Node:
         raise DocumentError(
             "document", f"not well-formed XML at line {line}, column {column + 1}: {reason}"
         ) from None
+    except (LookupError, ValueError) as error:
+        # Raised by pyexpat's handler of a declared encoding it does not know itself
+        # (LookupError for an unknown or a bytes-to-bytes codec, ValueError for a multi-byte
+        # one, UnicodeError for a codec that refuses to decode): the builder raises only
+        # DocumentError and defusedxml's refusals are caught above.
+        raise DocumentError("document", _encoding_reason(document, error)) from None
     if not isinstance(root, Node):  # pragma: no cover - expat refuses a document without one
         raise DocumentError("document", "no root element")
     return root
+
+
+def _encoding_reason(document: bytes | str, error: Exception) -> str:
+    """Why the parser could not decode the document, naming the encoding it declares."""
+    head = document[:_DECLARATION_CHARS]
+    text = head if isinstance(head, str) else head.decode("latin-1")
+    match = _ENCODING.search(text)
+    name = f"encoding {match.group(1)!r}" if match else "declared encoding"
+    return f"the {name} cannot be read ({error}): declare UTF-8, UTF-16 or a single-byte encoding"
 
 
 def _check_size(document: bytes | str, limits: DocumentLimits) -> None:
