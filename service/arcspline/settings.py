@@ -87,7 +87,7 @@ class Settings(BaseSettings):
     drawing_max_segments: PositiveInt = Field(
         default=200_000,
         le=MAX_SEGMENTS,
-        description="Most output segments for one drawing, all toolpaths together (422 beyond).",
+        description="Most segments of one drawing, as read and as output (422 beyond).",
     )
     drawing_max_elements: PositiveInt = Field(
         default=100_000, description="Most elements (XML elements, DXF entities) in a drawing."
