@@ -16,11 +16,13 @@ import re
 from collections.abc import Sequence
 from typing import Literal, NamedTuple
 
+import numpy as np
+
 from arcspline.geometry import GeometryError, Limits, StrategyName
 from arcspline.geometry.curves.segments import Path
 from arcspline.geometry.path_spline import PathSpline
 from arcspline.geometry.paths import approximate_path
-from arcspline.geometry.segment_table import check, segment_table
+from arcspline.geometry.segment_table import MAX_MAGNITUDE
 
 from .affine import Affine, transform_subpath
 from .join import Toolpath, join
@@ -43,7 +45,6 @@ CURVE_FRACTION = 0.1
 _NAMED_SOURCES = 3
 _SUBPATH_FIELD = re.compile(r"path\.subpaths\[(?P<i>\d+)\](?P<rest>.*)")
 _SUBPATH_WORDS = re.compile(r"path\.subpaths\[(?P<i>\d+)\]")
-_ELEMENT_SEGMENT = re.compile(r"path\.subpaths\[(?P<i>\d+)\]\.segments\[(?P<j>\d+)\]")
 
 
 class DrawingOptions(NamedTuple):
@@ -145,20 +146,25 @@ def _named(error: GeometryError, toolpaths: Sequence[Toolpath]) -> GeometryError
     )  # fmt: skip
 
 
-def _check_elements(elements: Sequence[Element]) -> None:
-    """The core's checks of every segment (finite numbers within its range, arcs consistent)
-    before joining and ordering compute with them: a :class:`DocumentError` naming the
-    element and the segment."""
-    owner = [(i, j) for i, e in enumerate(elements) for j in range(len(e.subpath.segments))]
-    table = segment_table([s for e in elements for s in e.subpath.segments])
-    try:
-        check(table, owner)
-    except GeometryError as error:
-        found = _ELEMENT_SEGMENT.fullmatch(error.field)
-        if found is None:  # every check names a segment; a future one might not
-            raise DocumentError("document", error.message) from None
-        element = elements[int(found["i"])]
-        raise DocumentError(element.source, f"segment {found['j']}: {error.message}") from None
+def _check_ends(elements: Sequence[Element]) -> None:
+    """Every segment's end points finite and within the core's range (``MAX_MAGNITUDE``)
+    before joining and ordering compute with them (their grids take no NaN): a
+    :class:`DocumentError` naming the element and the segment. The core checks every other
+    number of the joined toolpaths itself, once."""
+    counts = [len(e.subpath.segments) for e in elements]
+    ends = np.array(
+        [(*s.start, *s.end) for e in elements for s in e.subpath.segments], dtype=np.float64
+    )
+    with np.errstate(invalid="ignore"):
+        bad = ~np.all(np.abs(ends) < MAX_MAGNITUDE, axis=1)
+    if bad.any():
+        k = int(np.argmax(bad))
+        i = int(np.searchsorted(np.cumsum(counts), k, side="right"))
+        j = k - sum(counts[:i])
+        raise DocumentError(
+            elements[i].source,
+            f"segment {j}: has a number that is not finite or beyond ±{MAX_MAGNITUDE:g}",
+        )
 
 
 def _check(options: DrawingOptions) -> None:
@@ -187,7 +193,7 @@ def approximate_drawing(drawing: Drawing, options: DrawingOptions, limits: Limit
     warnings = (*drawing.warnings, *tidied.warnings)
     if not tidied.elements:
         raise _nothing_to_cut(drawing, warnings)
-    _check_elements(tidied.elements)
+    _check_ends(tidied.elements)
     joined = join(tidied.elements, options.resolved_join_tolerance)
     if options.order:
         ordered = order(joined.toolpaths, choose_start=options.choose_start)
