@@ -4,12 +4,13 @@
 from __future__ import annotations
 
 from arcspline.outputs.dxf import DxfOptions
-from arcspline.outputs.gcode import GcodeError, GcodeOptions
+from arcspline.outputs.gcode import GcodeOptions
 from arcspline.outputs.svg_document import SvgDocumentOptions
 from arcspline.worker.jobs import Output
 
 from .drawing_schemas import OUTPUTS, DrawingOutput, DrawingRequest, DxfRequest
-from .errors import ProblemError, gcode_problem, problem
+from .errors import ProblemError, problem
+from .translate import gcode_options
 
 #: The raw documents a drawing request may send, and their format (``None``: say it in
 #: the ``format`` query parameter).
@@ -72,25 +73,22 @@ def output_of(body: DrawingRequest, accept: str | None) -> DrawingOutput:
     )
 
 
-def gcode_options(body: DrawingRequest) -> GcodeOptions:
+def _program_options(body: DrawingRequest) -> GcodeOptions:
     """The program's options, in the request's unit (a 422 for options the writer refuses,
     or for a ``gcode`` output without them)."""
     if body.gcode is None:
         detail = "body.gcode: the gcode output needs the program's options (feed_rate at least)"
         item = {"loc": ["body", "gcode"], "msg": "required for the gcode output", "type": "missing"}
         raise ProblemError(problem("validation", detail, errors=[item]))
-    try:
-        return GcodeOptions(**{**body.gcode.model_dump(), "units": body.units})
-    except GcodeError as error:
-        raise ProblemError(gcode_problem(error, ["body"], "document")) from None
+    return gcode_options(body.gcode, ["body"], "document", units=body.units)
 
 
 def document_outputs(body: DrawingRequest, output: DrawingOutput) -> tuple[Output, ...]:
     """The writers a request needs: the program for JSON (if asked), else the one document."""
     if output == "json":
-        return () if body.gcode is None else (("gcode", gcode_options(body)),)
+        return () if body.gcode is None else (("gcode", _program_options(body)),)
     if output == "gcode":
-        return (("gcode", gcode_options(body)),)
+        return (("gcode", _program_options(body)),)
     if output == "dxf":
         dxf = body.dxf or DxfRequest()
         options = DxfOptions(body.units, dxf.polyline, dxf.layer_per_toolpath)

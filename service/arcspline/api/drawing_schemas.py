@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import base64
 import binascii
-from typing import Any, Literal
+from typing import Any, Literal, get_args
 
 from pydantic import ConfigDict, Field, model_validator
 
@@ -22,8 +22,8 @@ from .schemas import GcodeRequest, RequestModel, ResponseModel
 MAX_DOCUMENT = 8_000_000
 MAX_LAYERS = 1000
 #: The outputs a drawing request can answer with: JSON, or one document alone.
-OUTPUTS = ("json", "gcode", "dxf", "svg")
 DrawingOutput = Literal["json", "gcode", "dxf", "svg"]
+OUTPUTS: tuple[str, ...] = get_args(DrawingOutput)
 SourceUnits = Literal["mm", "cm", "m", "in", "ft", "pt", "pc", "px"]
 assert set(SourceUnits.__args__) == set(MM_PER_UNIT)  # type: ignore[attr-defined]
 

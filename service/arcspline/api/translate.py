@@ -15,15 +15,21 @@ from .path_schemas import PathRequest
 from .schemas import ApproximateRequest, GcodeRequest
 
 
+def gcode_options(
+    gcode: GcodeRequest, prefix: Loc, curve: str = "spiral", **overrides: Any
+) -> GcodeOptions:
+    """The writer's options of a request's ``gcode`` (with ``overrides``); options the
+    writer refuses raise a 422 (``curve``: the request's field that holds the curve)."""
+    try:
+        return GcodeOptions(**{**gcode.model_dump(), **overrides})
+    except GcodeError as error:
+        raise ProblemError(gcode_problem(error, prefix, curve)) from None
+
+
 def gcode_outputs(gcode: GcodeRequest | None, prefix: Loc) -> tuple[Output, ...]:
     """The G-code program a request asks for, as an output (options the writer refuses
     raise a 422)."""
-    if gcode is None:
-        return ()
-    try:
-        return (("gcode", GcodeOptions(**gcode.model_dump())),)
-    except GcodeError as error:
-        raise ProblemError(gcode_problem(error, prefix)) from None
+    return () if gcode is None else (("gcode", gcode_options(gcode, prefix)),)
 
 
 def to_job(

@@ -34,9 +34,9 @@ import numpy as np
 from arcspline.geometry import Curve, GeometryError
 from arcspline.geometry.spline import ArcSpline, FloatArray, Point
 
-from .dxf import extents
+from .extents import extents
 from .part import Part
-from .svg import MEDIA_TYPE, deviation_curves, nice_number
+from .svg import MEDIA_TYPE, deviation_curves, legend_lines, nice_number
 
 WIDTH_PX = 900.0
 HEIGHT_PX = 700.0
@@ -313,8 +313,7 @@ def render_drawing(
         "green: deviation magnified per toolpath (hover for ×M) inside the grey band "
         "±tolerance ×M; open #view-toolpath-k to zoom to toolpath k",
     ]
-    for line_no, text in enumerate(legend):
-        out.append(f'<text x="10" y="{20 + 18 * line_no}">{text}</text>')
+    out.extend(legend_lines(legend))
     out.append("</svg>")
     return "\n".join(out)
 

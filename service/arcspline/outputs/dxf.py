@@ -41,6 +41,7 @@ from ezdxf.layouts.layout import Modelspace
 from arcspline.geometry import GeometryError
 from arcspline.geometry.spline import ArcSpline, FloatArray
 
+from .extents import check_finite, extents
 from .part import Part
 
 MEDIA_TYPE = "image/vnd.dxf"
@@ -74,51 +75,10 @@ class DxfOptions:
                 raise GeometryError(name, f"must be true or false, got {value!r}")
 
 
-def _check_finite(splines: Sequence[ArcSpline]) -> None:
-    for spline in splines:
-        c = spline.columns
-        arcs = c.is_arc
-        numbers = (c.start, c.end, c.center[arcs], c.radius[arcs], c.sweep_rad)
-        if not all(bool(np.isfinite(a).all()) for a in numbers):
-            raise GeometryError(
-                "parts",
-                "the spline's coordinates are not finite; no DXF can hold them",
-                kind="precision",
-            )
-
-
 def _polar_deg(point: FloatArray, centre: FloatArray) -> float:
     """The polar angle of ``point`` about ``centre`` in degrees, in ``[0, 360)``."""
     angle = math.degrees(math.atan2(point[1] - centre[1], point[0] - centre[0]))
     return angle % 360.0
-
-
-def extents(splines: Sequence[ArcSpline]) -> tuple[FloatArray, FloatArray]:
-    """The bounding box ``(low, high)`` of the splines: every end point, and each arc's
-    extreme points along the axes where the arc passes them (zeros when there are none)."""
-    lows, highs = [], []
-    for spline in splines:
-        c = spline.columns
-        ends = np.concatenate([c.start, c.end])
-        lows.append(ends.min(axis=0))
-        highs.append(ends.max(axis=0))
-        arcs = c.is_arc
-        a0, sweep = c.start_angle_rad[arcs], c.sweep_rad[arcs]
-        lo_rad, hi_rad = np.minimum(a0, a0 + sweep), np.maximum(a0, a0 + sweep)
-        for k in range(4):  # the axis directions 0, π/2, π, 3π/2
-            phi = k * math.pi / 2
-            # The arc passes phi + 2πn for some n when it lies within [lo, hi].
-            n = np.ceil((lo_rad - phi) / (2 * math.pi))
-            passes = phi + 2 * math.pi * n <= hi_rad
-            extreme = c.center[arcs][passes] + c.radius[arcs][passes, None] * np.array(
-                [round(math.cos(phi)), round(math.sin(phi))], dtype=np.float64
-            )
-            if len(extreme):
-                lows.append(extreme.min(axis=0))
-                highs.append(extreme.max(axis=0))
-    if not lows:
-        return np.zeros(2), np.zeros(2)
-    return np.min(lows, axis=0), np.max(highs, axis=0)
 
 
 def _add_arc(
@@ -181,7 +141,7 @@ def _add_polyline(msp: Modelspace, spline: ArcSpline, layer: str) -> None:
 def write_dxf(parts: Sequence[Part], options: DxfOptions) -> str:
     """The drawing described in the module docstring, as DXF text."""
     splines = [spline for spline, _ in parts]
-    _check_finite(splines)
+    check_finite(splines, "DXF")
     doc = new_document(DXF_VERSION, units=INSUNITS[options.units])
     doc.header["$MEASUREMENT"] = MEASUREMENT[options.units]
     msp = doc.modelspace()

@@ -246,10 +246,14 @@ def render_svg(parts: Sequence[Part]) -> str:
         f"green: deviation ×{magnify:g} inside the grey band ±tolerance ×{magnify:g}; "
         "dots: arc centres, with spokes to each arc's ends",
     ]
-    for line_no, text in enumerate(legend):
-        out.append(f'<text x="10" y="{20 + 18 * line_no}">{text}</text>')
+    out.extend(legend_lines(legend))
     out.append("</svg>")
     return "\n".join(out)
+
+
+def legend_lines(texts: Sequence[str]) -> list[str]:
+    """A legend's lines of text at the picture's top left, one below the other."""
+    return [f'<text x="10" y="{20 + 18 * k}">{text}</text>' for k, text in enumerate(texts)]
 
 
 class SvgWriter:

@@ -31,12 +31,10 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Literal, get_args
 
-import numpy as np
-
 from arcspline.geometry import GeometryError
 from arcspline.geometry.spline import ArcSpline
 
-from .dxf import extents
+from .extents import check_finite, extents
 from .part import Part
 
 MEDIA_TYPE = "image/svg+xml"
@@ -105,23 +103,10 @@ def path_data(spline: ArcSpline) -> str:
     return " ".join(out)
 
 
-def _check_finite(splines: Sequence[ArcSpline]) -> None:
-    for spline in splines:
-        c = spline.columns
-        arcs = c.is_arc
-        numbers = (c.start, c.end, c.center[arcs], c.radius[arcs], c.sweep_rad)
-        if not all(bool(np.isfinite(a).all()) for a in numbers):
-            raise GeometryError(
-                "parts",
-                "the spline's coordinates are not finite; no SVG can hold them",
-                kind="precision",
-            )
-
-
 def write_svg_document(parts: Sequence[Part], options: SvgDocumentOptions) -> str:
     """The document described in the module docstring."""
     splines = [spline for spline, _ in parts]
-    _check_finite(splines)
+    check_finite(splines, "SVG")
     low, high = extents(splines)
     size = float(max(high[0] - low[0], high[1] - low[1]))
     margin = MARGIN_FRACTION * size if size > 0.0 else 1.0
