@@ -14,7 +14,7 @@ from typing import Any
 import httpx
 import pytest
 
-from .conftest import Server, parse_metrics, running_server
+from tests.support.server import Server, parse_metrics, running_server
 
 pytestmark = [
     pytest.mark.integration,
