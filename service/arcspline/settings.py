@@ -18,7 +18,7 @@ from arcspline.geometry import DEFAULT_LIMITS, Limits
 from arcspline.geometry.limits import MAX_SEGMENTS
 
 LogLevel = Literal["critical", "error", "warning", "info", "debug"]
-StartMethod = Literal["forkserver", "spawn"]
+StartMethod = Literal["forkserver", "spawn", "inline"]
 
 
 def available_cpus() -> int:
@@ -107,7 +107,10 @@ class Settings(BaseSettings):
         default=30, description="On SIGTERM, how long in-flight requests may take to finish (s)."
     )
     start_method: StartMethod = Field(
-        default="forkserver", description="How worker processes start (never fork: threads exist)."
+        default="forkserver",
+        description="How worker processes start (never fork: threads exist); 'inline': no "
+        "worker processes, jobs run in threads of the serving process without time limits "
+        "(the command line's local mode).",
     )
     log_level: LogLevel = Field(default="info", description="Log level of the service and uvicorn.")
     access_log: bool = Field(default=False, description="Log every request (costs throughput).")

@@ -12,6 +12,7 @@ from fastapi import FastAPI
 from fastapi.routing import APIRoute
 
 from arcspline.settings import Settings, get_settings
+from arcspline.worker.inline import InlinePool
 from arcspline.worker.jobs import approximate_chunk
 from arcspline.worker.pool import Coalescer, WorkerPool
 
@@ -46,6 +47,19 @@ def operation_id(route: APIRoute) -> str:
     return route.name
 
 
+def _new_pool(config: Settings) -> WorkerPool:
+    if config.start_method == "inline":
+        return InlinePool(
+            config.pool_size, config.queue_capacity, retry_after_s=config.retry_after_s
+        )
+    return WorkerPool(
+        config.pool_size,
+        config.queue_capacity,
+        start_method=config.start_method,
+        retry_after_s=config.retry_after_s,
+    )
+
+
 def create_app(settings: Settings | None = None) -> FastAPI:
     """A new app; ``settings`` default to the process-wide ones from the environment."""
     runtime = Runtime(settings or get_settings())
@@ -53,12 +67,7 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     @asynccontextmanager
     async def lifespan(_app: FastAPI) -> AsyncIterator[None]:
         config = runtime.settings
-        pool = WorkerPool(
-            config.pool_size,
-            config.queue_capacity,
-            start_method=config.start_method,
-            retry_after_s=config.retry_after_s,
-        )
+        pool = _new_pool(config)
         await pool.start()
         runtime.pool = pool
         runtime.coalescer = Coalescer(

@@ -1,0 +1,38 @@
+"""The service without a server: the same app, in this process, reached through
+:class:`~arcspline.client.AsyncClient` over an in-process transport. What the command line
+runs when it is given no ``--server``; the answers are the server's, byte for byte, because
+the routes, workers' functions and writers are the same code.
+"""
+
+from __future__ import annotations
+
+from collections.abc import AsyncIterator
+from contextlib import asynccontextmanager
+from typing import Any
+
+import httpx
+
+from .asynchronous import AsyncClient
+
+
+@asynccontextmanager
+async def local_client(workers: int = 0, **settings: Any) -> AsyncIterator[AsyncClient]:
+    """An :class:`AsyncClient` of an app started in this process.
+
+    ``workers=0``: jobs run in a thread of this process (no process to start, no time
+    limits; for one file); ``workers=n``: a pool of ``n`` worker processes, as the server
+    has (for many files at once). ``settings`` override the service's settings
+    (``arcspline.settings.Settings``; the environment's ``ARCSPLINE_*`` apply too).
+    """
+    from arcspline.api.app import create_app
+    from arcspline.settings import Settings
+
+    if workers == 0:
+        settings = {"start_method": "inline", "pool_size": 1, **settings}
+    else:
+        settings = {"pool_size": workers, **settings}
+    app = create_app(Settings(**settings))
+    async with app.router.lifespan_context(app):
+        transport = httpx.ASGITransport(app=app)
+        async with AsyncClient("http://arcspline.local", transport=transport) as client:
+            yield client

@@ -1,0 +1,56 @@
+"""A pool without worker processes, for the command line: tasks run in a thread of the
+calling process.
+
+:class:`InlinePool` is a :class:`~arcspline.worker.pool.WorkerPool` in every way the API sees
+(admission, capacity, slots, coalescing, drain), but its tasks are the same functions called
+directly, in a thread so that the event loop stays free: no process to start (a one-file
+command answers in the time of the work itself) and no pickling. What it gives up: time
+limits are not enforced (a thread cannot be stopped; the caller waits for the work), a task
+that crashes the interpreter takes the caller with it, and tasks share one interpreter (the
+core holds the GIL), so ``size`` buys concurrency, not parallelism.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+from collections.abc import Callable
+from typing import Any, TypeVar
+
+from .pool import WorkerPool
+
+T = TypeVar("T")
+
+
+class InlinePool(WorkerPool):
+    """Tasks in threads of this process (``start_method="inline"``; see the module)."""
+
+    def __init__(self, size: int, capacity: int, *, retry_after_s: float = 1.0) -> None:
+        super().__init__(size, capacity, start_method="spawn", retry_after_s=retry_after_s)
+
+    @property
+    def pids(self) -> list[int]:
+        return []
+
+    async def start(self) -> None:
+        self.state = "ready"
+
+    async def drain(self, timeout_s: float) -> None:
+        self.state = "draining"
+        with contextlib.suppress(TimeoutError):
+            await asyncio.wait_for(self._idle.wait(), timeout_s)
+        self.state = "stopped"
+
+    async def _execute(
+        self,
+        fn: Callable[..., T],
+        args: tuple[Any, ...],
+        time_limit_s: float,
+        deadline: float | None,
+        units: int = 1,
+    ) -> T:
+        self.running += units
+        try:
+            return await asyncio.to_thread(fn, *args)
+        finally:
+            self.running -= units
