@@ -293,9 +293,10 @@ async def test_a_bad_document_is_a_422_naming_where(
 
 
 async def test_an_unknown_media_type_is_a_415(client: httpx.AsyncClient) -> None:
-    response = await client.post(URL, content=b"x", headers={"Content-Type": "text/csv"})
-    body = problem_of(response, 415)
-    assert "text/csv" in body["detail"]
+    for url in (URL, PREVIEW):
+        response = await client.post(url, content=b"x", headers={"Content-Type": "text/csv"})
+        body = problem_of(response, 415)
+        assert "text/csv" in body["detail"]
 
 
 async def test_an_unknown_query_parameter_is_named(client: httpx.AsyncClient) -> None:

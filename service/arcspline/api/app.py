@@ -6,6 +6,7 @@ import random
 import uuid
 from collections.abc import AsyncIterator
 from contextlib import asynccontextmanager
+from typing import Any
 
 from asgi_correlation_id import CorrelationIdMiddleware
 from fastapi import FastAPI
@@ -16,21 +17,11 @@ from arcspline.worker.inline import InlinePool
 from arcspline.worker.jobs import approximate_chunk
 from arcspline.worker.pool import Coalescer, WorkerPool
 
-from . import approximate, drawings, health, metrics, paths, preview
+from . import approximate, contract, docs, drawings, health, metrics, paths, preview
 from .errors import RawJSONResponse, install_error_handlers
 from .limits import BodyLimitMiddleware
 from .metrics import MetricsMiddleware
 from .runtime import Runtime
-
-#: Version of the HTTP contract (``info.version`` of the OpenAPI document).
-API_VERSION = "1.0.0"
-
-DESCRIPTION = """\
-Approximates planar cubic Bézier spirals by G1 arc splines within a tolerance
-(D.J. Walton, D.S. Meek, *Approximation of a planar cubic Bézier spiral by circular arcs*,
-J. Comput. Appl. Math. 75 (1996) 47–56), for CNC tool paths.
-
-Every error is RFC 9457 problem details (`application/problem+json`)."""
 
 
 def request_id() -> str:
@@ -60,6 +51,16 @@ def _new_pool(config: Settings) -> WorkerPool:
     )
 
 
+class ArcsplineAPI(FastAPI):
+    """FastAPI, with the OpenAPI document finished by :func:`.contract.finish` (the headers
+    every response carries, and the document's security) once, when it is first built."""
+
+    def openapi(self) -> dict[str, Any]:
+        if self.openapi_schema is None:
+            self.openapi_schema = contract.finish(super().openapi())
+        return self.openapi_schema
+
+
 def create_app(settings: Settings | None = None) -> FastAPI:
     """A new app; ``settings`` default to the process-wide ones from the environment."""
     runtime = Runtime(settings or get_settings())
@@ -85,19 +86,26 @@ def create_app(settings: Settings | None = None) -> FastAPI:
             await pool.drain(config.drain_timeout_s)
             runtime.pool = runtime.coalescer = None
 
-    app = FastAPI(
+    app = ArcsplineAPI(
         title="arcspline",
-        version=API_VERSION,
-        description=DESCRIPTION,
+        version=contract.VERSION,
+        description=contract.DESCRIPTION,
+        license_info=contract.LICENSE,
+        contact=contract.CONTACT,
+        servers=contract.SERVERS,
+        openapi_tags=contract.TAGS,
         lifespan=lifespan,
         default_response_class=RawJSONResponse,
         generate_unique_id_function=operation_id,
+        # Served by .docs from the package's own copies of Swagger UI and ReDoc (no CDN).
+        docs_url=None,
         redoc_url=None,
     )
     app.state.runtime = runtime
     install_error_handlers(app)
     for module in (approximate, paths, drawings, preview, health, metrics):
         app.include_router(module.router)
+    docs.install(app)
     # The last added is the outermost: request id, then metrics, then the body limit.
     app.add_middleware(
         BodyLimitMiddleware, max_body_bytes=runtime.settings.max_body_bytes, metrics=runtime.metrics

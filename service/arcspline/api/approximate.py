@@ -6,20 +6,18 @@ from typing import Any
 
 from fastapi import APIRouter, Request
 from pydantic import TypeAdapter
+from starlette.responses import Response
 
-from arcspline.worker.jobs import Encoded, Job, approximate_chunk
+from arcspline.worker.jobs import Encoded, Job, approximate_chunk, render
 
-from .batch import run_batch
-from .errors import (
-    Loc,
-    ProblemError,
-    RawJSONResponse,
-    problem_responses,
-)
+from .batch import json_only, run_batch
+from .contract import OUTPUT_PARAMETER, answers
+from .errors import Loc, ProblemError, RawJSONResponse, problem_responses
+from .negotiation import answer_document, output_of
 from .routing import LeanRoute
 from .runtime import runtime_of
 from .schemas import ApproximateRequest, ApproximateResponse, BatchRequest, BatchResponse
-from .translate import job_problem, to_job
+from .translate import curve_outputs, job_problem, to_job
 
 router = APIRouter(tags=["approximation"], route_class=LeanRoute)
 
@@ -29,15 +27,27 @@ _JOB_ADAPTER: TypeAdapter[ApproximateRequest] = TypeAdapter(ApproximateRequest)
 @router.post(
     "/v1/approximate",
     name="approximate",
-    summary="Approximate one spiral by arcs",
+    summary="Approximate one spiral by arcs: JSON, G-code, DXF or SVG",
     response_model=ApproximateResponse,
-    responses=problem_responses(400, 413, 422, 503, 504),
+    responses={
+        **answers("The arc spline (JSON), or the one document asked for"),
+        **problem_responses(400, 406, 413, 422, 503, 504),
+    },
+    openapi_extra={"parameters": [OUTPUT_PARAMETER]},
 )
-async def approximate(body: ApproximateRequest, request: Request) -> RawJSONResponse:
-    """The arc spline of one spiral within the tolerance, its statistics, and G-code if asked."""
+async def approximate(body: ApproximateRequest, request: Request) -> Response:
+    """The arc spline of one spiral within the tolerance, its statistics, and G-code if asked
+    — or one document alone: the program, a DXF or an SVG of the arcs (``output``)."""
+    output = output_of(body.output, request)
+    job = to_job(body, ["body"], curve_outputs(body, output, ["body"]))
     runtime = runtime_of(request)
+    if output != "json":
+        return await answer_document(
+            request, render, job, runtime.settings.limits, endpoint="approximate",
+            stem="spiral", output=output, problem_of=lambda error: job_problem(error, ["body"]),
+        )  # fmt: skip
     # Jobs that arrive while every worker is busy share a worker task (see Coalescer).
-    result = await runtime.singles().run(to_job(body, ["body"]))
+    result = await runtime.singles().run(job)
     if isinstance(result, Encoded):
         runtime.metrics.job_ok("approximate", result.arc_count, result.line_count)
         return RawJSONResponse(result.body)
@@ -50,7 +60,10 @@ async def approximate(body: ApproximateRequest, request: Request) -> RawJSONResp
     name="approximate_batch",
     summary="Approximate many spirals",
     response_model=BatchResponse,
-    responses=problem_responses(400, 413, 422, 503),
+    responses={
+        200: {"description": "One result per job, in order"},
+        **problem_responses(400, 413, 422, 503),
+    },
 )
 async def approximate_batch(body: BatchRequest, request: Request) -> RawJSONResponse:
     """One result per job, in order: ``ok`` with the body of /v1/approximate, or ``error``.
@@ -62,7 +75,9 @@ async def approximate_batch(body: BatchRequest, request: Request) -> RawJSONResp
     settings = runtime.settings
 
     def make_job(raw: Any, prefix: Loc) -> Job:
-        return to_job(_JOB_ADAPTER.validate_python(raw), prefix)
+        job = _JOB_ADAPTER.validate_python(raw)
+        json_only(job.output, prefix)
+        return to_job(job, prefix)
 
     body_bytes = await run_batch(
         runtime, body.jobs, make_job, approximate_chunk, settings.limits,

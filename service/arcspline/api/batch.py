@@ -17,9 +17,21 @@ from arcspline.worker.pool import PoolError, chunk_sizes
 
 from .errors import Loc, ProblemError, pool_problem, problem, problem_kind, validation_problem
 from .runtime import Runtime
+from .schemas import OutputFormat
 from .translate import job_problem
 
 JobT = TypeVar("JobT")
+
+
+def json_only(output: OutputFormat | None, prefix: Loc) -> None:
+    """Refuses a job that asks for a document alone: a batch answers JSON, job by job."""
+    if output not in (None, "json"):
+        item = {
+            "loc": ["output"],
+            "msg": "a batch answers JSON only: `json` or none",
+            "type": "json_only",
+        }
+        raise ProblemError(validation_problem([item], prefix))
 
 
 async def run_batch(

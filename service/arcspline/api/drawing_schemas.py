@@ -6,9 +6,9 @@ from __future__ import annotations
 
 import base64
 import binascii
-from typing import Any, Literal, get_args
+from typing import Annotated, Any, Literal
 
-from pydantic import ConfigDict, Field, model_validator
+from pydantic import ConfigDict, Field, StringConstraints, model_validator
 
 from arcspline.drawings.approximate import DrawingOptions
 from arcspline.drawings.document import DocumentSpec
@@ -16,14 +16,14 @@ from arcspline.drawings.model import MM_PER_UNIT, DocumentLimits
 from arcspline.geometry import StrategyName
 
 from .path_schemas import PathStatsResponse, SubpathResponse
-from .schemas import GcodeRequest, RequestModel, ResponseModel
+from .schemas import OUTPUT_DESCRIPTION, GcodeRequest, OutputFormat, RequestModel, ResponseModel
 
 #: Longest ``document`` accepted in a JSON body (characters); the body limit caps it too.
 MAX_DOCUMENT = 8_000_000
 MAX_LAYERS = 1000
-#: The outputs a drawing request can answer with: JSON, or one document alone.
-DrawingOutput = Literal["json", "gcode", "dxf", "svg"]
-OUTPUTS: tuple[str, ...] = get_args(DrawingOutput)
+#: Longest layer name (AutoCAD's limit since R2000).
+MAX_LAYER_NAME = 255
+LayerName = Annotated[str, StringConstraints(max_length=MAX_LAYER_NAME)]
 SourceUnits = Literal["mm", "cm", "m", "in", "ft", "pt", "pc", "px"]
 assert set(SourceUnits.__args__) == set(MM_PER_UNIT)  # type: ignore[attr-defined]
 
@@ -59,7 +59,8 @@ class DrawingRequest(RequestModel):
 
     document: str = Field(
         max_length=MAX_DOCUMENT,
-        description="The document: SVG or ASCII DXF text, or base64 (see `encoding`).",
+        description="The document: SVG or ASCII DXF text, or base64 (see `encoding`); the "
+        "server's body limit (ARCSPLINE_MAX_BODY_BYTES, 4 MiB by default) applies first.",
     )
     format: Literal["svg", "dxf"] = Field(description="The document's format.")
     encoding: Literal["text", "base64"] = Field(
@@ -75,7 +76,7 @@ class DrawingRequest(RequestModel):
         description="The unit of the document's own numbers, overriding what it declares "
         "(DXF `$INSUNITS`; SVG: one user unit).",
     )
-    layers: list[str] | None = Field(
+    layers: list[LayerName] | None = Field(
         default=None, max_length=MAX_LAYERS, description="DXF: read only these layers."
     )
     join_tolerance: float | None = Field(
@@ -88,11 +89,7 @@ class DrawingRequest(RequestModel):
     choose_start: bool = Field(
         default=False, description="Start each closed contour at its vertex nearest the tool."
     )
-    output: DrawingOutput | None = Field(
-        default=None,
-        description="`json` (default), or one document alone: `gcode`, `dxf`, `svg`; "
-        "also chosen by the Accept header.",
-    )
+    output: OutputFormat | None = Field(default=None, description=OUTPUT_DESCRIPTION)
     gcode: GcodeRequest | None = Field(
         default=None, description="G-code options (needed for the `gcode` output)."
     )

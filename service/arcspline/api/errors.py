@@ -195,9 +195,16 @@ def validation_problem(errors: Sequence[Mapping[str, Any]], prefix: Loc) -> dict
     return problem("validation", f"{len(items)} invalid field(s): {shown}{more}", errors=items)
 
 
-def geometry_problem(error: GeometryError, prefix: Loc) -> dict[str, Any]:
-    """422 for a :class:`GeometryError`, naming the field by its request path."""
-    loc = [*prefix, *core_field_loc(error.field)]
+#: What the core and the writers call the whole curve when they refuse all of it (a result
+#: double precision cannot hold): the request's own field for it is named instead.
+_WHOLE_CURVE = frozenset({"spiral", "parts"})
+
+
+def geometry_problem(error: GeometryError, prefix: Loc, curve: str = "spiral") -> dict[str, Any]:
+    """422 for a :class:`GeometryError`, naming the field by its request path (``curve``:
+    the request's field that holds the curve)."""
+    field = curve if error.field in _WHOLE_CURVE else error.field
+    loc = [*prefix, *core_field_loc(field)]
     detail = f"{dotted(loc)}: {error.message}"
     if error.limit is not None and error.kind in ("tolerance_floor", "segment_limit"):
         detail += f" (limit: {error.limit:g})"

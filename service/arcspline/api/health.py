@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from fastapi import APIRouter, Request
 
-from .errors import PROBLEM_MEDIA_TYPE, ProblemError, RawJSONResponse, problem
+from .errors import ProblemError, RawJSONResponse, problem, problem_responses
 from .routing import LeanRoute
 from .runtime import runtime_of
 from .schemas import HealthResponse, ReadyResponse
@@ -14,7 +14,17 @@ router = APIRouter(tags=["operations"], route_class=LeanRoute)
 _HEALTHY = HealthResponse(status="ok").model_dump_json().encode()
 
 
-@router.get("/healthz", name="healthz", summary="Liveness", response_model=HealthResponse)
+@router.get(
+    "/healthz",
+    name="healthz",
+    summary="Liveness",
+    response_model=HealthResponse,
+    # 413: the body limit applies to every request, before routing (even a GET's body).
+    responses={
+        200: {"description": "The process answers"},
+        **problem_responses(413),
+    },
+)
 async def healthz() -> RawJSONResponse:
     """The process is up and its event loop answers."""
     return RawJSONResponse(_HEALTHY)
@@ -26,12 +36,12 @@ async def healthz() -> RawJSONResponse:
     summary="Readiness",
     response_model=ReadyResponse,
     responses={
+        200: {"description": "The pool accepts work"},
+        **problem_responses(413),
         503: {
+            **problem_responses(503)[503],
             "description": "Starting, restarting its workers, or draining",
-            "content": {
-                PROBLEM_MEDIA_TYPE: {"schema": {"$ref": "#/components/schemas/ProblemResponse"}}
-            },
-        }
+        },
     },
 )
 async def readyz(request: Request) -> RawJSONResponse:
@@ -41,7 +51,11 @@ async def readyz(request: Request) -> RawJSONResponse:
         state: str = "stopped" if pool is None else pool.state
         if state == "ready":  # ready by state, but a worker has died: about to restart
             state = "restarting its workers"
-        raise ProblemError(problem("not_ready", f"the worker pool is {state}"))
+        retry_after = str(runtime_of(request).settings.retry_after_s)
+        raise ProblemError(
+            problem("not_ready", f"the worker pool is {state}"),
+            headers={"Retry-After": retry_after},
+        )
     ready = ReadyResponse(
         status="ready", workers=pool.size, in_flight=pool.in_flight, queue_capacity=pool.capacity
     )

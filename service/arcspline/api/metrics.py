@@ -20,7 +20,7 @@ from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
 from arcspline.worker.pool import WorkerPool
 
-from .errors import ALL_KINDS
+from .errors import ALL_KINDS, problem_responses
 from .routing import LeanRoute
 
 # The *_created series (a timestamp per label set) double the text for no use here.
@@ -161,7 +161,17 @@ router = APIRouter(tags=["operations"], route_class=LeanRoute)
     name="metrics",
     summary="Prometheus metrics",
     response_class=Response,
-    responses={200: {"content": {"text/plain": {"schema": {"type": "string"}}}}},
+    responses={
+        200: {
+            "description": "The metrics, as Prometheus text or OpenMetrics",
+            "content": {
+                "text/plain": {"schema": {"type": "string"}},
+                "application/openmetrics-text": {"schema": {"type": "string"}},
+            },
+        },
+        # The body limit applies to every request, before routing (even a GET's body).
+        **problem_responses(413),
+    },
 )
 async def metrics(request: Request) -> Response:
     """Prometheus text format (OpenMetrics when the scraper asks for it)."""

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from typing import Annotated, Any, Literal
 
-from pydantic import ConfigDict, Discriminator, Field, SkipValidation, Tag, field_validator
+from pydantic import ConfigDict, Discriminator, Field, StringConstraints, Tag, field_validator
 
 from arcspline.geometry import StrategyName
 from arcspline.paths import PathFromData, PathFromSegments, PathSpec
@@ -24,13 +24,17 @@ from arcspline.paths.specs import (
 )
 
 from .schemas import (
+    OUTPUT_DESCRIPTION,
     ArcSegmentResponse,
     BatchErrorResponse,
     GcodeRequest,
     LineSegmentResponse,
+    OutputFormat,
     RequestModel,
     ResponseModel,
+    ValidatedByRoute,
     Vector,
+    batch_jobs,
 )
 
 #: Longest SVG path data accepted (characters); the body limit caps it too.
@@ -160,8 +164,9 @@ def _path_tag(value: Any) -> str:
     return PATH_TAGS[0] if isinstance(value, str) else PATH_TAGS[1]
 
 
+PathData = Annotated[str, StringConstraints(max_length=MAX_PATH_DATA)]
 PathField = Annotated[
-    Annotated[str, Tag(PATH_TAGS[0])] | Annotated[PathSegmentsRequest, Tag(PATH_TAGS[1])],
+    Annotated[PathData, Tag(PATH_TAGS[0])] | Annotated[PathSegmentsRequest, Tag(PATH_TAGS[1])],
     Discriminator(_path_tag),
 ]
 
@@ -173,7 +178,8 @@ class PathRequest(RequestModel):
     model_config = ConfigDict(json_schema_extra={"examples": [PATH_EXAMPLE]})
 
     path: PathField = Field(
-        description="SVG path data (the `d` attribute), or subpaths of typed segments."
+        description="SVG path data (the `d` attribute; at most 2,000,000 characters, and the "
+        "server's body limit applies), or subpaths of typed segments."
     )
     tolerance: float = Field(gt=0, description="Largest distance allowed from the path.")
     strategy: StrategyName = Field(
@@ -182,15 +188,11 @@ class PathRequest(RequestModel):
         "'fewest-arcs': the fewest segments within the tolerance.",
     )
     gcode: GcodeRequest | None = Field(
-        default=None, description="Also return one G-code program for the whole path."
+        default=None,
+        description="Also return one G-code program for the whole path (needed for the "
+        "`gcode` output); its `units` are those of a `dxf` or `svg` output too (mm without it).",
     )
-
-    @field_validator("path")
-    @classmethod
-    def _bounded(cls, value: str | PathSegmentsRequest) -> str | PathSegmentsRequest:
-        if isinstance(value, str) and len(value) > MAX_PATH_DATA:
-            raise ValueError(f"path data longer than {MAX_PATH_DATA} characters")
-        return value
+    output: OutputFormat | None = Field(default=None, description=OUTPUT_DESCRIPTION)
 
     def spec(self, max_segments: int) -> PathSpec:
         """The worker's value for this path (built and checked there)."""
@@ -208,9 +210,9 @@ class PathRequest(RequestModel):
 class PathBatchRequest(RequestModel):
     """Many paths at once; each is validated on its own, so one bad path spoils nothing else."""
 
-    jobs: list[SkipValidation[PathRequest]] = Field(
-        min_length=1, description="Bodies of /v1/paths/approximate; the number is capped (413)."
-    )
+    model_config = ConfigDict(json_schema_extra={"examples": [{"jobs": [PATH_EXAMPLE]}]})
+
+    jobs: list[Annotated[Any, ValidatedByRoute(PathRequest)]] = batch_jobs("/v1/paths/approximate")
 
 
 # -- responses ---------------------------------------------------------------------------

@@ -7,6 +7,7 @@ from typing import Any
 
 from fastapi import APIRouter, Request
 from pydantic import TypeAdapter
+from starlette.responses import Response
 
 from arcspline.worker.jobs import (
     Document,
@@ -17,18 +18,15 @@ from arcspline.worker.jobs import (
     render,
 )
 
-from .batch import run_batch
-from .errors import (
-    Loc,
-    ProblemError,
-    RawJSONResponse,
-    problem_responses,
-)
+from .batch import json_only, run_batch
+from .contract import OUTPUT_PARAMETER, answers
+from .errors import Loc, ProblemError, RawJSONResponse, problem_responses
+from .negotiation import answer_document, output_of
 from .path_schemas import PathBatchRequest, PathBatchResponse, PathRequest, PathResponse
 from .preview import SVGResponse, svg_responses
 from .routing import LeanRoute
 from .runtime import runtime_of
-from .translate import job_problem, to_path_job
+from .translate import curve_outputs, job_problem, to_path_job
 
 router = APIRouter(tags=["paths"], route_class=LeanRoute)
 
@@ -38,16 +36,28 @@ _JOB_ADAPTER: TypeAdapter[PathRequest] = TypeAdapter(PathRequest)
 @router.post(
     "/v1/paths/approximate",
     name="approximate_path",
-    summary="Approximate a path (any curves, corners, subpaths) by arcs and lines",
+    summary="Approximate a path (any curves, corners, subpaths): JSON, G-code, DXF or SVG",
     response_model=PathResponse,
-    responses=problem_responses(400, 413, 422, 503, 504),
+    responses={
+        **answers("One arc spline per subpath (JSON), or the one document asked for"),
+        **problem_responses(400, 406, 413, 422, 503, 504),
+    },
+    openapi_extra={"parameters": [OUTPUT_PARAMETER]},
 )
-async def approximate_path(body: PathRequest, request: Request) -> RawJSONResponse:
+async def approximate_path(body: PathRequest, request: Request) -> Response:
     """One arc spline per subpath, each segment with its source, certified statistics, and
-    one G-code program for the whole path if asked."""
+    one G-code program for the whole path if asked — or one document alone: the program, a
+    DXF or an SVG of the whole path (``output``)."""
+    output = output_of(body.output, request)
     runtime = runtime_of(request)
     settings = runtime.settings
-    job = to_path_job(body, ["body"], settings.path_max_input_segments)
+    outputs = curve_outputs(body, output, ["body"])
+    job = to_path_job(body, ["body"], settings.path_max_input_segments, outputs)
+    if output != "json":
+        return await answer_document(
+            request, render, job, settings.path_limits, endpoint="paths", stem="path",
+            output=output, problem_of=lambda error: job_problem(error, ["body"], "path"),
+        )  # fmt: skip
     result = await runtime.running_pool().run(
         approximate_path_one, job, settings.path_limits, time_limit_s=settings.job_time_limit_s
     )
@@ -63,7 +73,10 @@ async def approximate_path(body: PathRequest, request: Request) -> RawJSONRespon
     name="approximate_paths_batch",
     summary="Approximate many paths",
     response_model=PathBatchResponse,
-    responses=problem_responses(400, 413, 422, 503),
+    responses={
+        200: {"description": "One result per job, in order"},
+        **problem_responses(400, 413, 422, 503),
+    },
 )
 async def approximate_paths_batch(body: PathBatchRequest, request: Request) -> RawJSONResponse:
     """One result per job, in order: ``ok`` with the body of /v1/paths/approximate, or
@@ -72,9 +85,9 @@ async def approximate_paths_batch(body: PathBatchRequest, request: Request) -> R
     settings = runtime.settings
 
     def make_job(raw: Any, prefix: Loc) -> PathJob:
-        return to_path_job(
-            _JOB_ADAPTER.validate_python(raw), prefix, settings.path_max_input_segments
-        )
+        job = _JOB_ADAPTER.validate_python(raw)
+        json_only(job.output, prefix)
+        return to_path_job(job, prefix, settings.path_max_input_segments)
 
     # A path is one compiled loop already: each chunk a job, as the pool allows.
     body_bytes = await run_batch(
@@ -92,8 +105,8 @@ async def approximate_paths_batch(body: PathBatchRequest, request: Request) -> R
     responses=svg_responses(),
 )
 async def preview_path(body: PathRequest, request: Request) -> SVGResponse:
-    """Every subpath, its arcs with their centres, the deviation magnified (``gcode``
-    ignored)."""
+    """Every subpath, its arcs with their centres, the deviation magnified (``gcode`` and
+    ``output`` ignored)."""
     runtime = runtime_of(request)
     settings = runtime.settings
     job = to_path_job(body, ["body"], settings.path_max_input_segments, outputs=(("svg", None),))

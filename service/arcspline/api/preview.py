@@ -24,11 +24,14 @@ class SVGResponse(Response):
     media_type = MEDIA_TYPE
 
 
-def svg_responses() -> dict[int | str, dict[str, Any]]:
-    """The picture, or a problem."""
+def svg_responses(*more: int) -> dict[int | str, dict[str, Any]]:
+    """The picture, or a problem (of the usual statuses and ``more``)."""
     return {
-        200: {"description": "The picture", "content": {MEDIA_TYPE: {}}},
-        **problem_responses(400, 413, 422, 503, 504),
+        200: {
+            "description": "The picture",
+            "content": {MEDIA_TYPE: {"schema": {"type": "string"}}},
+        },
+        **problem_responses(*sorted({400, 413, 422, 503, 504, *more})),
     }
 
 
@@ -40,7 +43,8 @@ def svg_responses() -> dict[int | str, dict[str, Any]]:
     responses=svg_responses(),
 )
 async def preview(body: ApproximateRequest, request: Request) -> SVGResponse:
-    """The spiral, its arcs with their centres, the deviation magnified (``gcode`` ignored)."""
+    """The spiral, its arcs with their centres, the deviation magnified (``gcode`` and
+    ``output`` ignored)."""
     runtime = runtime_of(request)
     job = to_job(body, ["body"], outputs=(("svg", None),))
     settings = runtime.settings

@@ -12,20 +12,25 @@ real responses against them.
 
 from __future__ import annotations
 
-from typing import Annotated, Any, Literal
+from dataclasses import dataclass
+from typing import Annotated, Any, Literal, get_args
 
 from pydantic import (
     BaseModel,
     ConfigDict,
     Discriminator,
     Field,
-    SkipValidation,
+    GetCoreSchemaHandler,
+    GetJsonSchemaHandler,
     Tag,
     field_validator,
 )
+from pydantic.json_schema import JsonSchemaValue
+from pydantic_core import CoreSchema, core_schema
 
 from arcspline.geometry import SpiralFromControlPoints, SpiralFromParameters, StrategyName
 from arcspline.outputs.gcode import MAX_DECIMALS, MIN_DECIMALS
+from arcspline.settings import Settings
 
 #: The paper's example (Walton & Meek 1996, Table 1): 12 arcs at this tolerance.
 PAPER_EXAMPLE: dict[str, Any] = {
@@ -38,6 +43,21 @@ PAPER_EXAMPLE: dict[str, Any] = {
     "tolerance": 0.001,
     "strategy": "subdivide",
 }
+
+
+#: What an approximation is answered with: JSON, or one document alone.
+OutputFormat = Literal["json", "gcode", "dxf", "svg"]
+OUTPUT_FORMATS: tuple[str, ...] = get_args(OutputFormat)
+#: The default of ``ARCSPLINE_BATCH_MAX_JOBS``: what the schema shows as a batch's
+#: ``maxItems`` (the server's configured limit applies, with a 413).
+BATCH_MAX_JOBS = Settings.model_fields["batch_max_jobs"].default
+#: The default of ``ARCSPLINE_MAX_BODY_BYTES``: the ``maxLength`` the schema shows for a raw
+#: document (the server's configured limit applies, with a 413).
+MAX_BODY_BYTES = Settings.model_fields["max_body_bytes"].default
+OUTPUT_DESCRIPTION = (
+    "`json` (default), or one document alone: `gcode` (needs `gcode`), `dxf`, `svg`. "
+    "Also chosen by the `output` query parameter, else the Accept header."
+)
 
 
 class RequestModel(BaseModel):
@@ -132,7 +152,10 @@ class GcodeRequest(RequestModel):
     """Ask for a G-code program (RS-274) of the arc spline."""
 
     feed_rate: float = Field(gt=0, description="Cutting feed rate F, units per minute.")
-    units: Literal["mm", "inch"] = Field(default="mm", description="G21 (mm) or G20 (inch).")
+    units: Literal["mm", "inch"] = Field(
+        default="mm",
+        description="G21 (mm) or G20 (inch); also the unit of a `dxf` or `svg` output.",
+    )
     decimals: int | None = Field(
         default=None,
         ge=MIN_DECIMALS,
@@ -177,17 +200,50 @@ class ApproximateRequest(RequestModel):
         description="'subdivide': the paper's recursive subdivision; "
         "'fewest-arcs': the fewest segments within the tolerance.",
     )
-    gcode: GcodeRequest | None = Field(default=None, description="Also return a G-code program.")
+    gcode: GcodeRequest | None = Field(
+        default=None,
+        description="Also return a G-code program (needed for the `gcode` output); its "
+        "`units` are those of a `dxf` or `svg` output too (mm without it).",
+    )
+    output: OutputFormat | None = Field(default=None, description=OUTPUT_DESCRIPTION)
+
+
+@dataclass(frozen=True)
+class ValidatedByRoute:
+    """A batch's job: taken as any JSON value here and validated by the route, one job at a
+    time, so that a bad job becomes its own error entry rather than failing the batch. The
+    schema still says what each job must be: a ``$ref`` to ``model`` (not the model inlined,
+    which is what ``SkipValidation`` gives)."""
+
+    model: type[BaseModel]
+
+    def __get_pydantic_core_schema__(
+        self, _source: Any, _handler: GetCoreSchemaHandler
+    ) -> CoreSchema:
+        return core_schema.any_schema()
+
+    def __get_pydantic_json_schema__(
+        self, _schema: CoreSchema, handler: GetJsonSchemaHandler
+    ) -> JsonSchemaValue:
+        return handler(self.model.__pydantic_core_schema__)
+
+
+def batch_jobs(endpoint: str) -> Any:
+    """The ``jobs`` field of a batch of bodies of ``endpoint``."""
+    return Field(
+        min_length=1,
+        description=f"Bodies of {endpoint}, answered as JSON (`output` `json` or none). At "
+        f"most {BATCH_MAX_JOBS} by default: the server's ARCSPLINE_BATCH_MAX_JOBS applies (413).",
+        json_schema_extra={"maxItems": BATCH_MAX_JOBS},
+    )
 
 
 class BatchRequest(RequestModel):
     """Many jobs at once; each is validated on its own, so one bad job spoils nothing else."""
 
-    # Jobs are validated one by one by the route (so that a bad job becomes an error entry);
-    # the schema still shows what each must be.
-    jobs: list[SkipValidation[ApproximateRequest]] = Field(
-        min_length=1, description="Bodies of /v1/approximate; the number is capped (413)."
-    )
+    model_config = ConfigDict(json_schema_extra={"examples": [{"jobs": [PAPER_EXAMPLE]}]})
+
+    jobs: list[Annotated[Any, ValidatedByRoute(ApproximateRequest)]] = batch_jobs("/v1/approximate")
 
 
 # -- responses ---------------------------------------------------------------------------

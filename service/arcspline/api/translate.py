@@ -11,8 +11,9 @@ from arcspline.worker.jobs import Job, Output, PathJob
 
 from .drawing_schemas import DrawingRequest
 from .errors import Loc, ProblemError, dotted, gcode_problem, geometry_problem, problem
+from .negotiation import writers_for
 from .path_schemas import PathRequest
-from .schemas import ApproximateRequest, GcodeRequest
+from .schemas import ApproximateRequest, GcodeRequest, OutputFormat
 
 
 def gcode_options(
@@ -26,19 +27,31 @@ def gcode_options(
         raise ProblemError(gcode_problem(error, prefix, curve)) from None
 
 
-def gcode_outputs(gcode: GcodeRequest | None, prefix: Loc) -> tuple[Output, ...]:
-    """The G-code program a request asks for, as an output (options the writer refuses
-    raise a 422)."""
-    return () if gcode is None else (("gcode", gcode_options(gcode, prefix)),)
+def program_of(
+    gcode: GcodeRequest | None, prefix: Loc, curve: str = "spiral", **overrides: Any
+) -> GcodeOptions | None:
+    """The program's options, if the request asks for one (see :func:`gcode_options`)."""
+    return None if gcode is None else gcode_options(gcode, prefix, curve, **overrides)
+
+
+def curve_outputs(
+    request: ApproximateRequest | PathRequest, output: OutputFormat, prefix: Loc
+) -> tuple[Output, ...]:
+    """The writers of a spiral's or a path's answer: a DXF or SVG is in the program's unit
+    (``gcode.units``), else in mm — the curve's numbers are taken in that unit as given."""
+    gcode = request.gcode
+    units = "mm" if gcode is None else gcode.units
+    curve = "spiral" if isinstance(request, ApproximateRequest) else "path"
+    return writers_for(output, program_of(gcode, prefix, curve), units)
 
 
 def to_job(
     request: ApproximateRequest, prefix: Loc, outputs: tuple[Output, ...] | None = None
 ) -> Job:
     """The worker's job for ``request``: its curve, tolerance and strategy, and ``outputs``
-    (by default the G-code program the request asks for)."""
+    (by default those of its JSON answer: the G-code program, if asked for)."""
     if outputs is None:
-        outputs = gcode_outputs(request.gcode, prefix)
+        outputs = curve_outputs(request, "json", prefix)
     return Job(request.spiral.spec(), request.tolerance, request.strategy, outputs)
 
 
@@ -46,9 +59,9 @@ def to_path_job(
     request: PathRequest, prefix: Loc, max_segments: int, outputs: tuple[Output, ...] | None = None
 ) -> PathJob:
     """The worker's job for a path ``request`` (at most ``max_segments`` input segments), and
-    ``outputs`` (by default the G-code program the request asks for)."""
+    ``outputs`` (by default those of its JSON answer: the G-code program, if asked for)."""
     if outputs is None:
-        outputs = gcode_outputs(request.gcode, prefix)
+        outputs = curve_outputs(request, "json", prefix)
     return PathJob(request.spec(max_segments), request.tolerance, request.strategy, outputs)
 
 
@@ -58,7 +71,7 @@ def job_problem(
     """The problem of a job the worker could not complete (``curve``: the request's field
     that holds the curve)."""
     if isinstance(error, GeometryError):
-        return geometry_problem(error, prefix)
+        return geometry_problem(error, prefix, curve)
     return gcode_problem(error, prefix, curve)
 
 
