@@ -10,13 +10,14 @@ KERNELS := $(VENV)/.kernels
 HOST   ?= 127.0.0.1
 PORT   ?= 8000
 
-.PHONY: help install kernels run test lint typecheck pytest bench openapi lock image image-test clean
+.PHONY: help install kernels run test lint typecheck contract pytest bench openapi lock image image-test clean
 
 help:
 	@echo "make run         start the service on $(HOST):$(PORT) (installs into .venv first)"
-	@echo "make test        ruff, mypy and the whole pytest suite"
+	@echo "make test        ruff, mypy, the contract (lint, TypeScript types) and the whole pytest suite"
 	@echo "make bench       benchmarks that print figures (core, fewest-arcs, paths, service, start-up)"
 	@echo "make openapi     regenerate openapi/openapi.json from the app"
+	@echo "make contract    lint openapi/openapi.json (Redocly) and type-check TypeScript types from it"
 	@echo "make image       build the container image arcspline:local (podman)"
 	@echo "make image-test  build, run and check the image and the Kubernetes Deployment"
 	@echo "make lock        re-resolve requirements/*.lock from pyproject.toml"
@@ -52,7 +53,18 @@ typecheck: $(KERNELS)
 pytest: $(KERNELS)
 	$(BIN)/python -m pytest -n 2 --dist loadgroup
 
-test: lint typecheck pytest
+# The contract's tools (Redocly CLI, openapi-typescript, TypeScript), pinned by
+# contract/package-lock.json and installed again whenever it changes.
+CONTRACT_STAMP := contract/node_modules/.installed
+
+$(CONTRACT_STAMP): contract/package-lock.json
+	npm ci --prefix contract --no-audit --no-fund --no-update-notifier --ignore-scripts
+	touch $@
+
+contract: $(STAMP) $(CONTRACT_STAMP)
+	scripts/contract.sh
+
+test: lint typecheck contract pytest
 
 bench: $(KERNELS)
 	$(BIN)/python bench/core.py
