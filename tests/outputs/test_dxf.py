@@ -303,3 +303,11 @@ def test_bad_options_are_refused_by_name(options: dict[str, object], field: str)
 def test_the_writer_is_named_and_typed() -> None:
     assert WRITER.name == "dxf"
     assert WRITER.media_type == "image/vnd.dxf"
+
+
+def test_the_same_spline_gives_the_same_bytes() -> None:
+    """No time stamp or fresh GUID: a DXF is a function of its request."""
+    parts = parts_of(NAMES[0])
+    first = WRITER.write(parts, DxfOptions())
+    second = WRITER.write(parts, DxfOptions())
+    assert first == second

@@ -24,6 +24,13 @@ the spline's own coordinates back:
 system (1 metric, 0 imperial); ``$EXTMIN``/``$EXTMAX`` bound the drawing. The entities are
 on the layer ``ARCSPLINE``, or part ``k`` (from 1, cutting order) on ``TOOLPATH_k`` with
 ``layer_per_part``. See docs/drawings.md §7.
+
+The same spline gives the same bytes: ezdxf would stamp each file with the time and fresh
+GUIDs (``$TDCREATE``, ``$TDUPDATE``, ``$VERSIONGUID``, ``$FINGERPRINTGUID``), and its
+``write_fixed_meta_data_for_testing`` option writes fixed ones instead (2000-01-01, a
+constant GUID). A program of ours is a function of its request — cached, compared, the
+command line's local answer equal to the server's — so the option is set when this module
+loads (only our writers write DXF in this process).
 """
 
 from __future__ import annotations
@@ -34,6 +41,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Literal, get_args
 
+import ezdxf
 import numpy as np
 from ezdxf.filemanagement import new as new_document
 from ezdxf.layouts.layout import Modelspace
@@ -136,6 +144,9 @@ def _add_polyline(msp: Modelspace, spline: ArcSpline, layer: str) -> None:
     if not closed:
         points.append((float(c.end[-1, 0]), float(c.end[-1, 1]), 0.0))
     msp.add_lwpolyline(points, format="xyb", close=closed, dxfattribs={"layer": layer})
+
+
+ezdxf.options.write_fixed_meta_data_for_testing = True
 
 
 def write_dxf(parts: Sequence[Part], options: DxfOptions) -> str:
