@@ -24,7 +24,8 @@ Bézier spirals of D.J. Walton, D.S. Meek, *Approximation of a planar cubic Béz
 circular arcs*, J. Comput. Appl. Math. 75 (1996) 47–56; any path (lines, Béziers, circular and
 elliptical arcs); whole SVG and DXF drawings. Each answer is JSON, or one document alone — a
 G-code program, a DXF, an SVG — by the body's `output`, the `output` query parameter or the
-Accept header.
+Accept header. (Client generators that keep one media type per answer, such as
+openapi-python-client, read the JSON one; for a document alone, read the body as bytes.)
 
 Every error is RFC 9457 problem details (`application/problem+json`). Every response carries
 `X-Request-ID` (yours if it is a UUID, else a new one). The bounds the schemas show for batch
