@@ -84,3 +84,12 @@ def test_the_response_model_accepts_what_the_worker_encodes(
     model = ApproximateResponse.model_validate(body)
     assert model.stats.arc_count == spline.stats.arc_count
     assert len(model.segments) == len(spline)
+
+
+def test_a_drawings_source_units_are_those_the_readers_know() -> None:
+    from typing import get_args
+
+    from arcspline.api.drawing_schemas import SourceUnits
+    from arcspline.drawings.model import MM_PER_UNIT
+
+    assert set(get_args(SourceUnits)) == set(MM_PER_UNIT)

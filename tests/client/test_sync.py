@@ -135,3 +135,11 @@ def test_an_unreachable_server_raises_the_connection_error_after_the_retries() -
         pytest.raises(httpx.ConnectError),
     ):
         client.health()
+
+
+def test_the_json_alone_is_the_services_bytes_of_the_typed_answer(
+    client: Client, paper_request: dict[str, Any]
+) -> None:
+    raw = client.document(paper_request, "json")
+    assert raw.media_type == "application/json"
+    assert ApproximateResponse.model_validate_json(raw.content) == client.approximate(paper_request)

@@ -6,17 +6,21 @@ from __future__ import annotations
 
 import base64
 import binascii
-from typing import Annotated, Any, Literal
+from typing import TYPE_CHECKING, Annotated, Any, Literal
 
 from pydantic import ConfigDict, Field, StringConstraints, model_validator
 
-from arcspline.drawings.approximate import DrawingOptions
-from arcspline.drawings.document import DocumentSpec
-from arcspline.drawings.model import MM_PER_UNIT, DocumentLimits
 from arcspline.geometry import StrategyName
 
 from .path_schemas import PathStatsResponse, SubpathResponse
 from .schemas import OUTPUT_DESCRIPTION, GcodeRequest, OutputFormat, RequestModel, ResponseModel
+
+if TYPE_CHECKING:
+    # The readers (ezdxf, defusedxml) load where documents are read, not in every process
+    # that only names these models (the Python client, the command line's --server mode).
+    from arcspline.drawings.approximate import DrawingOptions
+    from arcspline.drawings.document import DocumentSpec
+    from arcspline.drawings.model import DocumentLimits
 
 #: Longest ``document`` accepted in a JSON body (characters); the body limit caps it too.
 MAX_DOCUMENT = 8_000_000
@@ -25,7 +29,6 @@ MAX_LAYERS = 1000
 MAX_LAYER_NAME = 255
 LayerName = Annotated[str, StringConstraints(max_length=MAX_LAYER_NAME)]
 SourceUnits = Literal["mm", "cm", "m", "in", "ft", "pt", "pc", "px"]
-assert set(SourceUnits.__args__) == set(MM_PER_UNIT)  # type: ignore[attr-defined]
 
 DRAWING_EXAMPLE: dict[str, Any] = {
     "document": (
@@ -115,6 +118,8 @@ class DrawingRequest(RequestModel):
             raise ValueError("is not valid base64") from None
 
     def spec(self, content: bytes, limits: DocumentLimits) -> DocumentSpec:
+        from arcspline.drawings.document import DocumentSpec
+
         layers = None if self.layers is None else tuple(self.layers)
         curve_tolerance_mm = self.options().curve_tolerance_mm
         return DocumentSpec(
@@ -122,6 +127,8 @@ class DrawingRequest(RequestModel):
         )
 
     def options(self) -> DrawingOptions:
+        from arcspline.drawings.approximate import DrawingOptions
+
         return DrawingOptions(
             self.tolerance, self.strategy, self.units, self.join_tolerance, self.order,
             self.choose_start,

@@ -26,6 +26,7 @@ from arcspline.api.schemas import ApproximateRequest, ApproximateResponse, Probl
 from .asynchronous import AsyncClient
 from .config import DEFAULT_URL
 from .errors import ServiceError
+from .files import atomic_writer
 from .local import local_client
 from .operations import Document, Output
 from .retry import Retry
@@ -46,5 +47,6 @@ __all__ = [
     "ProblemResponse",
     "Retry",
     "ServiceError",
+    "atomic_writer",
     "local_client",
 ]

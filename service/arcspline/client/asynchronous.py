@@ -20,6 +20,7 @@ from .batching import DEFAULT_MAX_BYTES, DEFAULT_MAX_JOBS, BatchPlan, Chunk, Ent
 from .batching import split as split_chunk
 from .config import DEFAULT_URL, ClientConfig
 from .errors import ServiceError
+from .files import atomic_writer
 from .operations import AnyRequest, Call, Document, Kind, Output
 from .retry import Retry, is_retryable
 
@@ -80,7 +81,8 @@ class AsyncClient:
         return await self._run(ops.approximate_drawing(request))
 
     async def document(self, request: AnyRequest, output: Output) -> Document:
-        """The G-code program, DXF or SVG of a spiral, path or drawing, alone."""
+        """The G-code program, DXF or SVG of a spiral, path or drawing, alone; ``"json"``:
+        the JSON answer as the service's bytes."""
         return await self._run(ops.document(request, output))
 
     async def download(self, request: AnyRequest, output: Output, to: Path | BinaryIO) -> Document:
@@ -173,7 +175,7 @@ class AsyncClient:
             if not response.is_success:
                 await response.aread()
                 return response
-            with ops.sink(to) as file:
+            with atomic_writer(to) as file:
                 async for block in response.aiter_bytes():
                     file.write(block)
             return response

@@ -9,12 +9,10 @@ from its kind (the ``spiral``, ``path`` or ``document`` field).
 
 from __future__ import annotations
 
-import contextlib
 import re
-from collections.abc import Callable, Iterator, Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
-from pathlib import Path
-from typing import Any, BinaryIO, Generic, Literal, NamedTuple, TypeAlias, TypeVar
+from typing import Any, Generic, Literal, NamedTuple, TypeAlias, TypeVar
 
 import httpx
 import orjson
@@ -33,8 +31,9 @@ T = TypeVar("T")
 M = TypeVar("M", bound=BaseModel)
 
 Kind = Literal["spiral", "path", "drawing"]
-#: The documents an approximation can be answered with instead of JSON.
-Output = Literal["gcode", "dxf", "svg"]
+#: What an approximation can be answered with: its JSON as the service wrote it, or one
+#: document alone.
+Output = Literal["json", "gcode", "dxf", "svg"]
 AnyRequest: TypeAlias = ApproximateRequest | PathRequest | DrawingRequest | Mapping[str, Any]
 
 #: Each kind's endpoints: approximate, batch (none for drawings), preview.
@@ -129,22 +128,6 @@ def read_streamed(response: httpx.Response) -> Document:
     return Document(b"", media_type, disposition[1] if disposition else None)
 
 
-@contextlib.contextmanager
-def sink(to: Path | BinaryIO) -> Iterator[BinaryIO]:
-    """``to`` itself, or a new file at ``to`` that appears only once complete (written
-    beside it, then renamed, so a failed download leaves no partial file)."""
-    if not isinstance(to, Path):
-        yield to
-        return
-    partial = to.with_name(f".{to.name}.partial")
-    try:
-        with partial.open("wb") as file:
-            yield file
-        partial.replace(to)
-    finally:
-        partial.unlink(missing_ok=True)
-
-
 def approximate(request: AnyRequest) -> Call[ApproximateResponse]:
     return _post("spiral", request, model_reader(ApproximateResponse))
 
@@ -166,6 +149,7 @@ def _post(kind: Kind, request: AnyRequest, read: Callable[[httpx.Response], T]) 
 
 #: Media types of the documents, as the service names them.
 OUTPUT_MEDIA_TYPES: dict[Output, str] = {
+    "json": "application/json",
     "gcode": "text/x-gcode",
     "dxf": "image/vnd.dxf",
     "svg": "image/svg+xml",
@@ -173,7 +157,8 @@ OUTPUT_MEDIA_TYPES: dict[Output, str] = {
 
 
 def document(request: AnyRequest, output: Output) -> Call[Document]:
-    """The G-code program, DXF or SVG of ``request``'s approximation, alone."""
+    """The G-code program, DXF or SVG of ``request``'s approximation, alone (or its JSON,
+    as the service's bytes)."""
     path = ENDPOINTS[kind_of(request)][0]
     body = encode(request, output=output)
     return Call("POST", path, body, OUTPUT_MEDIA_TYPES[output], read_document)

@@ -29,8 +29,10 @@ The same spline gives the same bytes: ezdxf would stamp each file with the time 
 GUIDs (``$TDCREATE``, ``$TDUPDATE``, ``$VERSIONGUID``, ``$FINGERPRINTGUID``), and its
 ``write_fixed_meta_data_for_testing`` option writes fixed ones instead (2000-01-01, a
 constant GUID). A program of ours is a function of its request — cached, compared, the
-command line's local answer equal to the server's — so the option is set when this module
-loads (only our writers write DXF in this process).
+command line's local answer equal to the server's — so the option is set whenever this
+module writes (only our writers write DXF in this process). ezdxf itself is imported then
+too: it takes a quarter of a second, which every process that names a writer (the client,
+the command line) would otherwise pay.
 """
 
 from __future__ import annotations
@@ -39,18 +41,19 @@ import io
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Literal, get_args
+from typing import TYPE_CHECKING, Literal, get_args
 
-import ezdxf
 import numpy as np
-from ezdxf.filemanagement import new as new_document
-from ezdxf.layouts.layout import Modelspace
 
 from arcspline.geometry import GeometryError
 from arcspline.geometry.spline import ArcSpline, FloatArray
 
 from .extents import check_finite, extents
 from .part import Part
+
+if TYPE_CHECKING:
+    from ezdxf.document import Drawing
+    from ezdxf.layouts.layout import Modelspace
 
 MEDIA_TYPE = "image/vnd.dxf"
 DXF_VERSION = "R2000"
@@ -146,14 +149,20 @@ def _add_polyline(msp: Modelspace, spline: ArcSpline, layer: str) -> None:
     msp.add_lwpolyline(points, format="xyb", close=closed, dxfattribs={"layer": layer})
 
 
-ezdxf.options.write_fixed_meta_data_for_testing = True
+def _new_document(units: Units) -> Drawing:
+    import ezdxf
+    from ezdxf.filemanagement import new
+
+    # ezdxf re-exports its options object without declaring it public.
+    ezdxf.options.write_fixed_meta_data_for_testing = True  # type: ignore[attr-defined]
+    return new(DXF_VERSION, units=INSUNITS[units])
 
 
 def write_dxf(parts: Sequence[Part], options: DxfOptions) -> str:
     """The drawing described in the module docstring, as DXF text."""
     splines = [spline for spline, _ in parts]
     check_finite(splines, "DXF")
-    doc = new_document(DXF_VERSION, units=INSUNITS[options.units])
+    doc = _new_document(options.units)
     doc.header["$MEASUREMENT"] = MEASUREMENT[options.units]
     msp = doc.modelspace()
     # ezdxf copies the model space's extents into $EXTMIN/$EXTMAX when it writes, unless
