@@ -1,4 +1,5 @@
-"""``python -m arcspline [--host H] [--port P]``: serve the API with uvicorn.
+"""``python -m arcspline [--host H] [--port P]``: serve the API with uvicorn (``arcspline
+serve`` is the same :func:`serve`).
 
 One uvicorn process (the approximation itself runs in the worker pool) on uvloop and
 httptools, without an access log unless ``ARCSPLINE_ACCESS_LOG=true``. SIGTERM or SIGINT
@@ -64,16 +65,15 @@ def _exit_cleanly(signum: int, frame: FrameType | None) -> None:
     raise SystemExit(0)
 
 
-def main(argv: list[str] | None = None) -> None:
+def serve(host: str | None = None, port: int | None = None) -> None:
+    """Serve the API until SIGTERM or SIGINT, with the settings of the environment
+    (``ARCSPLINE_*``); ``host`` and ``port`` override theirs. ``python -m arcspline`` and
+    ``arcspline serve`` both come here, so they serve alike."""
     import uvicorn
 
     from arcspline.settings import get_settings
 
     settings = get_settings()
-    parser = argparse.ArgumentParser(prog="python -m arcspline", description=__doc__)
-    parser.add_argument("--host", default=settings.host, help="address (ARCSPLINE_HOST)")
-    parser.add_argument("--port", type=int, default=settings.port, help="port (ARCSPLINE_PORT)")
-    args = parser.parse_args(argv)
     # Uvicorn drains on SIGTERM, then raises the signal again under the handler it found at
     # start, so that the exit status says "terminated". A drained server has nothing to
     # report: with this handler it exits 0.
@@ -82,8 +82,8 @@ def main(argv: list[str] | None = None) -> None:
     uvicorn.run(
         "arcspline.api.app:create_app",
         factory=True,
-        host=args.host,
-        port=args.port,
+        host=settings.host if host is None else host,
+        port=settings.port if port is None else port,
         loop="uvloop",
         http="httptools",
         lifespan="on",
@@ -93,6 +93,14 @@ def main(argv: list[str] | None = None) -> None:
         timeout_graceful_shutdown=settings.drain_timeout_s,
         server_header=False,
     )
+
+
+def main(argv: list[str] | None = None) -> None:
+    parser = argparse.ArgumentParser(prog="python -m arcspline", description=__doc__)
+    parser.add_argument("--host", help="address (default: ARCSPLINE_HOST, else 127.0.0.1)")
+    parser.add_argument("--port", type=int, help="port (default: ARCSPLINE_PORT, else 8000)")
+    args = parser.parse_args(argv)
+    serve(args.host, args.port)
 
 
 if __name__ == "__main__":
