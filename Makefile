@@ -15,7 +15,7 @@ PORT   ?= 8000
 help:
 	@echo "make run         start the service on $(HOST):$(PORT) (installs into .venv first)"
 	@echo "make test        ruff, mypy, the contract (lint, TypeScript types) and the whole pytest suite"
-	@echo "make bench       benchmarks that print figures (core, fewest-arcs, paths, service, start-up)"
+	@echo "make bench       benchmarks that print figures (core, fewest-arcs, paths, drawings, service, start-up, client, cli)"
 	@echo "make openapi     regenerate openapi/openapi.json from the app"
 	@echo "make contract    lint openapi/openapi.json (Redocly) and type-check TypeScript types from it"
 	@echo "make image       build the container image arcspline:local (podman)"
@@ -73,6 +73,8 @@ bench: $(KERNELS)
 	$(BIN)/python bench/drawings.py
 	$(BIN)/python bench/service.py
 	$(BIN)/python bench/startup.py
+	$(BIN)/python bench/client.py
+	$(BIN)/python bench/cli.py
 
 openapi: $(KERNELS)
 	$(BIN)/python -m arcspline.api.export openapi/openapi.json
