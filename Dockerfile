@@ -88,9 +88,12 @@ RUN --mount=type=secret,id=ca \
         export PIP_CERT=/run/secrets/ca REQUESTS_CA_BUNDLE=/run/secrets/ca SSL_CERT_FILE=/run/secrets/ca; \
     fi; \
     /opt/build/bin/pip install --no-deps --no-build-isolation --target /opt/app . ; \
+    # The `arcspline` command pip wrote runs the build venv's python: point it at the runtime's.
+    sed -i '1s|^#!.*|#!/opt/venv/bin/python|' /opt/app/bin/arcspline; \
     find /opt/app -name '*.so' -exec strip --strip-unneeded {} +; \
     python -m compileall -q /opt/app; \
-    cd / && python -c "import arcspline.__main__, arcspline.api.app, numpy, fastapi, uvicorn"
+    cd / && python -c "import arcspline.__main__, arcspline.api.app, numpy, fastapi, uvicorn"; \
+    /opt/app/bin/arcspline --version
 
 # ---------------------------------------------------------------------------------------------
 # runtime: python3 + the venv, unprivileged, read-only-root friendly.
@@ -103,9 +106,12 @@ RUN set -eu; \
 COPY --from=deps /opt/venv /opt/venv
 COPY --from=builder /opt/app /opt/app
 # PYTHONSAFEPATH: `python -m arcspline` imports the installed package, never the working dir.
-# PATH: the venv's python (its .pth adds /opt/app).
-ENV PATH=/opt/venv/bin:$PATH \
-    PYTHONSAFEPATH=1
+# PATH: the venv's python (its .pth adds /opt/app), and the `arcspline` command.
+# XDG_CACHE_HOME: ezdxf keeps its font cache there (HOME is /nonexistent; /tmp is the one
+# writable place under a read-only root), else it warns on every start and scans again.
+ENV PATH=/opt/venv/bin:/opt/app/bin:$PATH \
+    PYTHONSAFEPATH=1 \
+    XDG_CACHE_HOME=/tmp/.cache
 WORKDIR /
 # Numeric user, so Kubernetes' runAsNonRoot can verify it without reading /etc/passwd.
 USER 10001:10001

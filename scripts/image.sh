@@ -346,6 +346,25 @@ print(f"==>     {what}: POST /v1/approximate (paper's example, tolerance 0.001) 
 EOF
 }
 
+check_cli() {
+    # check_cli CONTAINER BASE_URL: the image's `arcspline` command computes the paper's
+    # example in the container (no server) and through the running one, to the same bytes.
+    local paper='{"spiral": {"start": [1.5, 3.0], "start_tangent": [1.0, 0.0], "turn_angle_deg": 51.34, "end_curvature": 0.41574}}'
+    local here there
+    CLI_ERR="$(mktemp)"
+    podman exec "$1" arcspline --version >/dev/null || die "$1: arcspline --version failed"
+    here="$(podman exec "$1" arcspline approx "$paper" -t 0.001 -q 2>"$CLI_ERR")" \
+        || die "$1: arcspline approx failed: $(cat "$CLI_ERR")"
+    [[ ! -s "$CLI_ERR" ]] || die "$1: arcspline approx -q wrote to stderr: $(cat "$CLI_ERR")"
+    there="$(podman exec "$1" arcspline approx "$paper" -t 0.001 -q --server "$2")" \
+        || die "$1: arcspline approx --server failed"
+    [[ "$here" == "$there" ]] || die "$1: arcspline approx: local and --server answers differ"
+    python3 -c 'import json, sys; s = json.loads(sys.argv[1])["stats"]; sys.exit(s["arc_count"] != 12)' \
+        "$here" || die "$1: arcspline approx: not the paper's 12 arcs"
+    rm -f "$CLI_ERR"
+    log "    $1: arcspline approx (in the container, and --server) -> the same 12 arcs"
+}
+
 check_not_root() {
     # check_not_root CONTAINER: PID 1 (the server) and a fresh exec both run unprivileged.
     local status uids
@@ -387,6 +406,7 @@ test_container() {
         "$IMAGE" python -m arcspline --host 127.0.0.1 --port "$TEST_PORT" >/dev/null
     wait_ready "http://127.0.0.1:$TEST_PORT/readyz" container
     check_api "http://127.0.0.1:$TEST_PORT" container
+    check_cli "$CONTAINER" "http://127.0.0.1:$TEST_PORT"
     check_not_root "$CONTAINER"
     check_hardened "$CONTAINER"
     podman healthcheck run "$CONTAINER" >/dev/null || die "$CONTAINER: HEALTHCHECK failed"
