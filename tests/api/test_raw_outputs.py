@@ -5,6 +5,7 @@ parameter or the ``Accept`` header; each checked against the JSON answer to the 
 
 from __future__ import annotations
 
+import copy
 import io
 import math
 import xml.etree.ElementTree as ET
@@ -14,6 +15,7 @@ import ezdxf
 import httpx
 import pytest
 
+from tests.conftest import PAPER_SPIRAL
 from tests.support import gcode_reader
 
 from .conftest import locs, problem_of
@@ -33,15 +35,7 @@ PROGRAM = {"feed_rate": 600}
 
 
 def _spiral_body() -> dict[str, Any]:
-    return {
-        "spiral": {
-            "start": [1.5, 3.0],
-            "start_tangent": [1.0, 0.0],
-            "turn_angle_deg": 51.34,
-            "end_curvature": 0.41574,
-        },
-        "tolerance": 0.001,
-    }
+    return {"spiral": copy.deepcopy(PAPER_SPIRAL), "tolerance": 0.001}
 
 
 def _path_body() -> dict[str, Any]:
