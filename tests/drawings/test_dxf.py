@@ -663,3 +663,30 @@ def test_a_block_reference_bomb_is_refused_by_its_segments() -> None:
     with pytest.raises(DocumentError, match=r"more than 10000 segments.*LWPOLYLINE"):
         read_dxf(content, limits=DocumentLimits(max_segments=10_000))
     assert len(read_dxf(content, limits=DocumentLimits(max_segments=20_000)).elements) == 20
+
+
+#: A DXF declared UTF-8 (R2007) holding bytes that are not UTF-8, on a layer name and on an
+#: entity type ezdxf does not know.
+NOT_UTF8 = (
+    b"0\nSECTION\n2\nHEADER\n9\n$ACADVER\n1\nAC1021\n0\nENDSEC\n"
+    b"0\nSECTION\n2\nENTITIES\n"
+    b"0\nLINE\n8\nla\x89yer\n10\n0\n20\n0\n11\n1\n21\n1\n"
+    b"0\nWID\x89GET\n8\n0\n"
+    b"0\nENDSEC\n0\nEOF\n"
+)
+
+
+def test_bytes_the_encoding_cannot_decode_are_replacement_characters_not_surrogates() -> None:
+    drawing = read_dxf(NOT_UTF8)
+    assert len(drawing.elements) == 1
+    texts = [w.element + w.reason for w in drawing.warnings]
+    texts += [e.source for e in drawing.elements]
+    assert any("WID\ufffdGET" in text for text in texts)
+    for text in texts:
+        text.encode("utf-8")  # what every answer needs (a lone surrogate cannot)
+
+
+def test_layers_are_listed_past_entities_without_one() -> None:
+    with pytest.raises(DocumentError, match="la\ufffdyer"):
+        read_dxf(NOT_UTF8, layers=["NOPE"])
+    assert len(read_dxf(NOT_UTF8, layers=["la\ufffdyer"]).elements) == 1

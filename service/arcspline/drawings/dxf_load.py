@@ -86,14 +86,17 @@ def _parse(document: bytes) -> tuple[EzDrawing, _HeaderWatch]:
     try:
         if document.startswith(BINARY_SENTINEL):
             return EzDrawing.load(watch.tags(binary_tags_loader(document))), watch
-        text = document.decode(_encoding(document), errors="surrogateescape")
+        # Bytes the declared encoding cannot decode become U+FFFD: ezdxf's default
+        # (surrogateescape) would carry lone surrogates into element names and messages,
+        # which no UTF-8 answer can hold (JSON, SVG, G-code).
+        text = document.decode(_encoding(document), errors="replace")
         return EzDrawing.load(watch.tags(ascii_tags_loader(io.StringIO(text, newline=None)))), watch
     except Exception as first:
         watch = _HeaderWatch()
         try:
             for _ in watch.tags(recover.bytes_loader(io.BytesIO(document))):
                 pass
-            doc, _auditor = recover.read(io.BytesIO(document))
+            doc, _auditor = recover.read(io.BytesIO(document), errors="replace")
         except Exception as exc:
             why = str(first)[:200]
             raise DocumentError("document", f"is not a readable DXF file ({why})") from exc
@@ -151,7 +154,9 @@ def selected_layers(doc: EzDrawing, layers: Sequence[str] | None) -> frozenset[s
         return None
     known = {entry.dxf.name.upper(): entry.dxf.name for entry in doc.layers}
     for entity in doc.modelspace():
-        known.setdefault(entity.dxf.layer.upper(), entity.dxf.layer)
+        # An entity ezdxf does not know has no layer attribute (it is skipped when read).
+        if entity.dxf.is_supported("layer") and entity.dxf.hasattr("layer"):
+            known.setdefault(entity.dxf.layer.upper(), entity.dxf.layer)
     unknown = [name for name in layers if name.upper() not in known]
     if unknown:
         raise DocumentError(
