@@ -8,6 +8,7 @@ import asyncio
 from collections.abc import Iterator
 from typing import Any
 
+import httpx
 import pytest
 
 from arcspline.api.schemas import ProblemResponse
@@ -16,6 +17,7 @@ from arcspline.client import (
     AsyncClient,
     Client,
     PathResponse,
+    Retry,
     ServiceError,
 )
 from arcspline.client.batching import Chunk, pack, split
@@ -156,3 +158,57 @@ def test_split_follows_the_servers_limit_or_halves() -> None:
     assert parts is not None
     assert [(p.start, len(p.jobs)) for p in parts] == [(10, 4), (14, 5)]
     assert split(Chunk(0, jobs(1)), refusal("body-too-large")) is None
+
+
+def test_a_limit_no_smaller_than_the_chunk_halves_it() -> None:
+    chunk = Chunk(0, jobs(*[1] * 4))
+    for limit in (4, 1000):
+        parts = split(chunk, refusal("too-many-jobs", limit))
+        assert parts is not None
+        assert [len(p.jobs) for p in parts] == [2, 2]
+
+
+def test_a_server_that_always_refuses_for_size_ends_in_errors_not_a_loop() -> None:
+    def refuse(request: httpx.Request) -> httpx.Response:
+        body = {"type": "urn:arcspline:problem:too-many-jobs", "title": "x", "status": 413,
+                "detail": "x", "limit": 1000}  # fmt: skip
+        return httpx.Response(413, json=body, headers={"Content-Type": "application/problem+json"})
+
+    with Client("http://x", transport=httpx.MockTransport(refuse)) as client:
+        answers = client.approximate_batch([spiral(0.1)] * 4)
+    assert [a.status for a in answers if isinstance(a, ServiceError)] == [413] * 4
+
+
+def test_a_chunk_whose_connection_fails_is_its_jobs_entries_and_the_rest_finish(
+    server: Server,
+) -> None:
+    """Jobs 0–2 go in one chunk, 3–5 in another; the first chunk's connection fails."""
+    requests = [spiral(0.01, 10.0 + i) for i in range(6)]
+    quick = Retry(attempts=2, backoff_s=0.001)
+    with httpx.HTTPTransport() as real:
+
+        def handle(request: httpx.Request) -> httpx.Response:
+            if b"10.0" in request.content:  # the first chunk's first job
+                raise httpx.ConnectError("scripted", request=request)
+            return real.handle_request(request)
+
+        transport = httpx.MockTransport(handle)
+        with Client(server.url, batch_max_jobs=3, transport=transport, retry=quick) as client:
+            answers = client.approximate_batch(requests)
+    for batch in (answers, asyncio.run(_async_batch(server.url, requests, quick))):
+        assert all(isinstance(a, httpx.ConnectError) for a in batch[:3])
+        assert all(isinstance(a, ApproximateResponse) for a in batch[3:])
+
+
+async def _async_batch(url: str, requests: list[dict[str, Any]], retry: Retry) -> list[Any]:
+    async with httpx.AsyncHTTPTransport() as real:
+
+        async def handle(request: httpx.Request) -> httpx.Response:
+            await request.aread()
+            if b"10.0" in request.content:
+                raise httpx.ConnectError("scripted", request=request)
+            return await real.handle_async_request(request)
+
+        transport = httpx.MockTransport(handle)
+        async with AsyncClient(url, batch_max_jobs=3, transport=transport, retry=retry) as client:
+            return await client.approximate_batch(requests)

@@ -71,7 +71,7 @@ def scripted(*answers: int | type[Exception], retry_after: str | None = None) ->
         headers = {"Retry-After": retry_after} if retry_after and answer == 503 else {}
         body = {"type": "about:blank", "title": "t", "status": answer, "detail": "d"}
         if answer == 200:
-            return httpx.Response(200, json={"status": "ok"})
+            return httpx.Response(200, text="<svg/>")
         return httpx.Response(
             answer, json=body, headers={**headers, "Content-Type": "application/problem+json"}
         )
@@ -80,20 +80,40 @@ def scripted(*answers: int | type[Exception], retry_after: str | None = None) ->
 
 
 QUICK = Retry(attempts=4, backoff_s=0.001)
+#: Any call that is retried: a preview (its answer read as text).
+PATH = {"path": "M 0 0 L 1 1", "tolerance": 1}
 
 
 def test_busy_and_dropped_connections_are_retried() -> None:
     transport, calls = scripted(503, httpx.ConnectError, 429, 200)
     with Client("http://x", retry=QUICK, transport=transport) as client:
-        assert client.health().status == "ok"
+        assert client.preview(PATH) == "<svg/>"
     assert len(calls) == 4
 
 
 def test_retry_after_is_waited_for() -> None:
     transport, calls = scripted(503, 200, retry_after="1")
     with Client("http://x", retry=QUICK, transport=transport) as client:
-        client.health()
+        client.preview(PATH)
     assert 1.0 <= calls[1] - calls[0] <= 1.6
+
+
+def test_retry_after_is_spread_so_that_clients_refused_together_part() -> None:
+    busy = httpx.Response(503, headers={"Retry-After": "2"})
+    waits = {Retry().wait_s(0, busy) for _ in range(200)}
+    assert min(waits) >= 2.0  # type: ignore[type-var]
+    assert max(waits) <= 3.0  # type: ignore[type-var]
+    assert len(waits) > 100
+
+
+def test_the_probes_are_not_retried() -> None:
+    transport, calls = scripted(503, 200)
+    with (
+        Client("http://x", retry=QUICK, transport=transport) as client,
+        pytest.raises(ServiceError),
+    ):
+        client.ready()
+    assert len(calls) == 1
 
 
 @pytest.mark.parametrize("status", [400, 404, 413, 422, 500, 504])
@@ -103,7 +123,7 @@ def test_answers_that_would_not_change_are_not_retried(status: int) -> None:
         Client("http://x", retry=QUICK, transport=transport) as client,
         pytest.raises(ServiceError) as caught,
     ):
-        client.health()
+        client.preview(PATH)
     assert caught.value.status == status
     assert len(calls) == 1
 
@@ -114,7 +134,7 @@ def test_a_read_timeout_is_not_retried() -> None:
         Client("http://x", retry=QUICK, transport=transport) as client,
         pytest.raises(httpx.ReadTimeout),
     ):
-        client.health()
+        client.preview(PATH)
     assert len(calls) == 1
 
 
@@ -124,8 +144,13 @@ def test_attempts_are_counted_in_all() -> None:
         Client("http://x", retry=QUICK, transport=transport) as client,
         pytest.raises(ServiceError),
     ):
-        client.health()
+        client.preview(PATH)
     assert len(calls) == 4
+
+
+def test_a_url_that_cannot_be_sent_is_not_retried() -> None:
+    with Client("127.0.0.1:9", retry=QUICK) as client, pytest.raises(httpx.UnsupportedProtocol):
+        client.preview(PATH)
 
 
 def test_an_answer_that_is_not_a_problem_keeps_its_status_and_text() -> None:
@@ -146,6 +171,7 @@ def test_retry_after_in_seconds_or_as_a_date() -> None:
     assert told is not None
     assert 18 <= told <= 21
     assert retry_after_s("soon") is None
+    assert retry_after_s("²") is None  # a digit to str.isdigit, not to float
     assert retry_after_s(None) is None
 
 

@@ -3,6 +3,7 @@ service's problems as one exception, downloads that stream and never leave half 
 
 from __future__ import annotations
 
+import asyncio
 import io
 from pathlib import Path
 from typing import Any
@@ -14,6 +15,7 @@ import pytest
 from arcspline.client import (
     ApproximateRequest,
     ApproximateResponse,
+    AsyncClient,
     Client,
     DrawingResponse,
     PathResponse,
@@ -143,3 +145,42 @@ def test_the_json_alone_is_the_services_bytes_of_the_typed_answer(
     raw = client.document(paper_request, "json")
     assert raw.media_type == "application/json"
     assert ApproximateResponse.model_validate_json(raw.content) == client.approximate(paper_request)
+
+
+class _BrokenThenWhole(httpx.SyncByteStream):
+    """A program that breaks off after its first line the first time it is sent."""
+
+    sent = 0
+
+    def __iter__(self) -> Any:
+        type(self).sent += 1
+        yield b"G17 G21\n"
+        if type(self).sent == 1:
+            raise httpx.ReadError("dropped")
+        yield b"M2\n"
+
+
+def test_a_download_tried_again_writes_the_document_once(tmp_path: Path) -> None:
+    def handle(request: httpx.Request) -> httpx.Response:
+        return httpx.Response(200, headers={"Content-Type": "text/x-gcode"},
+                              stream=_BrokenThenWhole())  # fmt: skip
+
+    quick = Retry(attempts=3, backoff_s=0.001)
+    for target in (io.BytesIO(), str(tmp_path / "part.ngc")):
+        _BrokenThenWhole.sent = 0
+        with Client("http://x", transport=httpx.MockTransport(handle), retry=quick) as client:
+            client.download(PATH, "gcode", target)
+        written = target.getvalue() if isinstance(target, io.BytesIO) else Path(target).read_bytes()
+        assert written == b"G17 G21\nM2\n"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["part.ngc"]
+
+
+def test_the_async_download_streams_into_the_file(server: Server, tmp_path: Path) -> None:
+    async def run() -> Any:
+        async with AsyncClient(server.url) as client:
+            return await client.download(DRAWING, "dxf", tmp_path / "part.dxf")
+
+    answer = asyncio.run(run())
+    assert (answer.media_type, answer.filename) == ("image/vnd.dxf", "drawing.dxf")
+    with Client(server.url) as client:
+        assert (tmp_path / "part.dxf").read_bytes() == client.document(DRAWING, "dxf").content

@@ -311,3 +311,10 @@ def test_the_same_spline_gives_the_same_bytes() -> None:
     first = WRITER.write(parts, DxfOptions())
     second = WRITER.write(parts, DxfOptions())
     assert first == second
+
+
+def test_ezdxf_keeps_its_own_metadata_setting_for_other_writers() -> None:
+    import ezdxf
+
+    WRITER.write(parts_of(NAMES[0]), DxfOptions())
+    assert ezdxf.options.write_fixed_meta_data_for_testing is False  # type: ignore[attr-defined]

@@ -5,9 +5,8 @@ from __future__ import annotations
 
 import asyncio
 from collections.abc import Iterable, Mapping
-from pathlib import Path
 from types import TracebackType
-from typing import Any, BinaryIO, TypeVar
+from typing import Any, TypeVar
 
 import httpx
 
@@ -16,13 +15,22 @@ from arcspline.api.path_schemas import PathResponse
 from arcspline.api.schemas import ApproximateResponse, HealthResponse, ReadyResponse
 
 from . import operations as ops
-from .batching import DEFAULT_MAX_BYTES, DEFAULT_MAX_JOBS, BatchPlan, Chunk, Entry, Results, plan
-from .batching import split as split_chunk
+from .batching import (
+    DEFAULT_MAX_BYTES,
+    DEFAULT_MAX_JOBS,
+    BatchPlan,
+    Chunk,
+    Entry,
+    Outcome,
+    Results,
+    plan,
+    settle,
+)
 from .config import DEFAULT_URL, ClientConfig
 from .errors import ServiceError
-from .files import atomic_writer
+from .files import Destination, atomic_writer
 from .operations import AnyRequest, Call, Document, Kind, Output
-from .retry import Retry, is_retryable
+from .retry import NO_RETRY, Attempts, Retry
 
 T = TypeVar("T")
 
@@ -85,8 +93,9 @@ class AsyncClient:
         the JSON answer as the service's bytes."""
         return await self._run(ops.document(request, output))
 
-    async def download(self, request: AnyRequest, output: Output, to: Path | BinaryIO) -> Document:
-        """:meth:`document`, streamed into a file (``content`` is then empty)."""
+    async def download(self, request: AnyRequest, output: Output, to: Destination) -> Document:
+        """:meth:`document`, streamed into a file (a path) or a binary stream, which gets
+        the whole document or nothing (``content`` is then empty)."""
         return await self._run(ops.document(request, output), to)
 
     async def preview(self, request: AnyRequest) -> str:
@@ -102,14 +111,15 @@ class AsyncClient:
 
     async def approximate_batch(
         self, requests: Iterable[AnyRequest]
-    ) -> list[ApproximateResponse | ServiceError]:
+    ) -> list[ApproximateResponse | ServiceError | httpx.TransportError]:
         """Many spirals through ``POST /v1/approximate/batch``, in chunks: one entry per
-        request, in order, its response or the :class:`ServiceError` that refused it."""
+        request, in order: its response, the :class:`ServiceError` that refused it, or the
+        connection failure that ended its chunk after every retry."""
         return await self._batch("spiral", requests)  # type: ignore[return-value]
 
     async def approximate_paths_batch(
         self, requests: Iterable[AnyRequest]
-    ) -> list[PathResponse | ServiceError]:
+    ) -> list[PathResponse | ServiceError | httpx.TransportError]:
         """Many paths through ``POST /v1/paths/batch``, in chunks (as
         :meth:`approximate_batch`)."""
         return await self._batch("path", requests)  # type: ignore[return-value]
@@ -120,7 +130,10 @@ class AsyncClient:
         batch = plan(kind, requests, self.config.batch_max_jobs, self.config.batch_max_bytes)
         results = Results(batch.size)
         in_flight = asyncio.Semaphore(self.config.max_concurrency)
-        await asyncio.gather(*(self._chunk(batch, c, results, in_flight) for c in batch.chunks))
+        # A task group: if anything unexpected ends one chunk, the others are cancelled.
+        async with asyncio.TaskGroup() as chunks:
+            for chunk in batch.chunks:
+                chunks.create_task(self._chunk(batch, chunk, results, in_flight))
         return results.done()
 
     async def _chunk(
@@ -130,45 +143,35 @@ class AsyncClient:
         results: Results,
         in_flight: asyncio.Semaphore,
     ) -> None:
+        outcome: Outcome
         try:
             async with in_flight:
-                entries = await self._run(batch.call(chunk))
-            results.fill(chunk, entries)
-        except ServiceError as error:
-            smaller = split_chunk(chunk, error)
-            if smaller is None:
-                results.fill(chunk, error)
-                return
-            for part in smaller:
-                await self._chunk(batch, part, results, in_flight)
+                outcome = await self._run(batch.call(chunk))
+        except (ServiceError, httpx.TransportError) as error:
+            outcome = error
+        for part in settle(results, chunk, outcome):
+            await self._chunk(batch, part, results, in_flight)
 
-    async def _run(self, call: Call[T], to: Path | BinaryIO | None = None) -> T:
-        retry = self.config.retry
-        attempt = 0
+    async def _run(self, call: Call[T], to: Destination | None = None) -> T:
+        attempts = Attempts(self.config.retry if call.retried else NO_RETRY)
         while True:
             try:
-                if to is None:
-                    response = await self._http.request(
-                        call.method, call.path, content=call.body, headers=call.headers
-                    )
-                    if response.is_success:
-                        return call.read(response)
-                else:
-                    response = await self._stream(call, to)
-                    if response.is_success:
-                        return ops.read_streamed(response)  # type: ignore[return-value]
+                response = await (self._send(call) if to is None else self._stream(call, to))
             except httpx.TransportError as error:
-                wait = retry.wait_s(attempt) if is_retryable(error) else None
-                if wait is None:
-                    raise
+                wait = attempts.after_error(error)
             else:
-                wait = retry.wait_s(attempt, response)
-                if wait is None:
-                    raise ServiceError.from_response(response)
+                if response.is_success:
+                    read = call.read if to is None else ops.read_streamed
+                    return read(response)  # type: ignore[return-value]
+                wait = attempts.after_response(response)
             await asyncio.sleep(wait)
-            attempt += 1
 
-    async def _stream(self, call: Call[Any], to: Path | BinaryIO) -> httpx.Response:
+    async def _send(self, call: Call[Any]) -> httpx.Response:
+        return await self._http.request(
+            call.method, call.path, content=call.body, headers=call.headers
+        )
+
+    async def _stream(self, call: Call[Any], to: Destination) -> httpx.Response:
         async with self._http.stream(
             call.method, call.path, content=call.body, headers=call.headers
         ) as response:

@@ -24,8 +24,9 @@ from arcspline.settings import Settings
 from .errors import ServiceError
 from .operations import ENDPOINTS, AnyRequest, Call, Kind, encode, kind_of
 
-#: A batch's answer to one job: its response, or why it was refused.
-Entry: TypeAlias = ApproximateResponse | PathResponse | ServiceError
+#: A batch's answer to one job: its response, or what ended it — the service's refusal, or
+#: a connection that failed after every retry.
+Entry: TypeAlias = ApproximateResponse | PathResponse | ServiceError | httpx.TransportError
 
 #: The service's defaults (a server configured lower makes the client split further).
 DEFAULT_MAX_JOBS: int = Settings.model_fields["batch_max_jobs"].default
@@ -88,13 +89,19 @@ def pack(jobs: Sequence[bytes], start: int, max_jobs: int, max_bytes: int) -> li
 
 def split(chunk: Chunk, error: ServiceError) -> list[Chunk] | None:
     """Smaller chunks to send instead of one the service refused as too large, or ``None``
-    if the refusal is not about size (or a single job is itself too large)."""
+    if the refusal is not about size (or a single job is itself too large). Each is
+    smaller than ``chunk``, so splitting ends, whatever limit the refusal names."""
     if error.status != 413 or len(chunk.jobs) == 1:
         return None
-    if error.kind == "too-many-jobs" and error.limit is not None and error.limit >= 1:
-        return pack(chunk.jobs, chunk.start, int(error.limit), 2**62)
+    limit = error.limit if error.kind == "too-many-jobs" else None
+    if limit is not None and 1 <= limit < len(chunk.jobs):
+        return pack(chunk.jobs, chunk.start, int(limit), 2**62)
     half = len(chunk.jobs) // 2
     return [Chunk(chunk.start, chunk.jobs[:half]), Chunk(chunk.start + half, chunk.jobs[half:])]
+
+
+#: What sending a chunk ended with: its entries, or the failure of the whole chunk.
+Outcome: TypeAlias = list[Entry] | ServiceError | httpx.TransportError
 
 
 def _entries_reader(kind: Kind) -> Callable[[httpx.Response], list[Entry]]:
@@ -118,13 +125,25 @@ class Results:
     def __init__(self, size: int) -> None:
         self._entries: list[Entry | None] = [None] * size
 
-    def fill(self, chunk: Chunk, entries: Sequence[Entry] | ServiceError) -> None:
+    def fill(self, chunk: Chunk, outcome: Outcome) -> None:
         for i in range(len(chunk.jobs)):
             self._entries[chunk.start + i] = (
-                entries if isinstance(entries, ServiceError) else entries[i]
+                outcome if isinstance(outcome, Exception) else outcome[i]
             )
 
     def done(self) -> list[Entry]:
         entries = [entry for entry in self._entries if entry is not None]
         assert len(entries) == len(self._entries), "every chunk was answered"
         return entries
+
+
+def settle(results: Results, chunk: Chunk, outcome: Outcome) -> list[Chunk]:
+    """Records ``chunk``'s outcome in ``results``; the chunks to send in its place when the
+    service refused it as too large (none otherwise: a failure of the whole chunk becomes
+    the entry of each of its jobs)."""
+    if isinstance(outcome, ServiceError):
+        smaller = split(chunk, outcome)
+        if smaller is not None:
+            return smaller
+    results.fill(chunk, outcome)
+    return []

@@ -27,6 +27,10 @@ class ServiceError(Exception):
         super().__init__(f"{problem.status} {problem.title}: {problem.detail}")
         self.problem = problem
 
+    def __reduce__(self) -> tuple[object, ...]:
+        # A batch's entries may cross a process boundary: pickle the problem itself.
+        return (ServiceError, (self.problem,))
+
     @property
     def status(self) -> int:
         return self.problem.status

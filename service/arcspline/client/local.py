@@ -14,6 +14,10 @@ import httpx
 
 from .asynchronous import AsyncClient
 
+#: The body limit of the service in this process: a document of up to 256 MiB (a request
+#: holds a document as JSON text, which escaping makes a fifth larger).
+LOCAL_MAX_BODY_BYTES = 256 * 1024 * 1024
+
 
 @asynccontextmanager
 async def local_client(workers: int = 0, **settings: Any) -> AsyncIterator[AsyncClient]:
@@ -22,17 +26,21 @@ async def local_client(workers: int = 0, **settings: Any) -> AsyncIterator[Async
     ``workers=0``: jobs run in a thread of this process (no process to start, no time
     limits; for one file); ``workers=n``: a pool of ``n`` worker processes, as the server
     has (for many files at once). ``settings`` override the service's settings
-    (``arcspline.settings.Settings``; the environment's ``ARCSPLINE_*`` apply too).
+    (``arcspline.settings.Settings``; the environment's ``ARCSPLINE_*`` apply too), but for
+    the body limit: what a network service must bound, a file on this machine need not, so
+    it is :data:`LOCAL_MAX_BODY_BYTES` unless given.
     """
     from arcspline.api.app import create_app
     from arcspline.settings import Settings
 
+    settings = {"max_body_bytes": LOCAL_MAX_BODY_BYTES, **settings}
     if workers == 0:
         settings = {"start_method": "inline", "pool_size": 1, **settings}
     else:
         settings = {"pool_size": workers, **settings}
     app = create_app(Settings(**settings))
     async with app.router.lifespan_context(app):
-        transport = httpx.ASGITransport(app=app)
+        # A failure inside the app is its 500 problem, as a server would answer.
+        transport = httpx.ASGITransport(app=app, raise_app_exceptions=False)
         async with AsyncClient("http://arcspline.local", transport=transport) as client:
             yield client

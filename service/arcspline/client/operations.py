@@ -59,6 +59,9 @@ class Call(Generic[T]):
     body: bytes | None
     accept: str
     read: Callable[[httpx.Response], T]
+    #: Whether a busy answer or a dropped connection is tried again (not for the probes,
+    #: whose answer is meant to be now).
+    retried: bool = True
 
     @property
     def headers(self) -> dict[str, str]:
@@ -171,8 +174,12 @@ def preview(request: AnyRequest) -> Call[str]:
 
 
 def health() -> Call[HealthResponse]:
-    return Call("GET", "/healthz", None, "application/json", model_reader(HealthResponse))
+    return Call(
+        "GET", "/healthz", None, "application/json", model_reader(HealthResponse), retried=False
+    )
 
 
 def ready() -> Call[ReadyResponse]:
-    return Call("GET", "/readyz", None, "application/json", model_reader(ReadyResponse))
+    return Call(
+        "GET", "/readyz", None, "application/json", model_reader(ReadyResponse), retried=False
+    )

@@ -12,6 +12,8 @@ from dataclasses import dataclass
 
 import httpx
 
+from .errors import ServiceError
+
 #: Statuses worth another try: the service (or a proxy before it) is busy, not the request
 #: wrong. A 504 is the request's own time limit: it would take as long again.
 RETRY_STATUSES = frozenset({429, 502, 503})
@@ -46,9 +48,13 @@ class Retry:
                 return None
             told = retry_after_s(response.headers.get("retry-after"))
             if told is not None:
-                return min(told, self.max_wait_s)
+                return min(told * (1.0 + 0.5 * random.random()), self.max_wait_s)
         jitter = 0.5 + random.random()
         return min(self.backoff_s * 2.0**attempt * jitter, self.max_wait_s)
+
+
+#: For calls that are not tried again.
+NO_RETRY = Retry(attempts=1)
 
 
 def retry_after_s(value: str | None) -> float | None:
@@ -56,7 +62,7 @@ def retry_after_s(value: str | None) -> float | None:
     if not value:
         return None
     value = value.strip()
-    if value.isdigit():
+    if value.isascii() and value.isdigit():
         return float(value)
     try:
         when = email.utils.parsedate_to_datetime(value)
@@ -65,7 +71,41 @@ def retry_after_s(value: str | None) -> float | None:
     return max(0.0, when.timestamp() - time.time())
 
 
+#: Transport failures not worth another try: a read or write that timed out (a slow answer
+#: would be as slow again, and the work would run twice), and a URL or request that cannot
+#: be sent at all (no scheme, a bad header).
+_FINAL_ERRORS = (
+    httpx.ReadTimeout,
+    httpx.WriteTimeout,
+    httpx.PoolTimeout,
+    httpx.UnsupportedProtocol,
+    httpx.LocalProtocolError,
+)
+
+
 def is_retryable(error: httpx.TransportError) -> bool:
-    """A connection that failed or was dropped, not a read that timed out (a slow answer
-    would be as slow again, and the work would run twice)."""
-    return not isinstance(error, httpx.ReadTimeout | httpx.WriteTimeout | httpx.PoolTimeout)
+    """A connection that failed or was dropped (see :data:`_FINAL_ERRORS` for the rest)."""
+    return not isinstance(error, _FINAL_ERRORS)
+
+
+class Attempts:
+    """The tries of one call, without I/O: after each failure, how long to wait before the
+    next, or the failure to end with (the service's problem as :class:`ServiceError`)."""
+
+    def __init__(self, retry: Retry) -> None:
+        self._retry = retry
+        self._count = 0
+
+    def after_error(self, error: httpx.TransportError) -> float:
+        wait = self._retry.wait_s(self._count) if is_retryable(error) else None
+        if wait is None:
+            raise error
+        self._count += 1
+        return wait
+
+    def after_response(self, response: httpx.Response) -> float:
+        wait = self._retry.wait_s(self._count, response)
+        if wait is None:
+            raise ServiceError.from_response(response)
+        self._count += 1
+        return wait

@@ -29,17 +29,20 @@ The same spline gives the same bytes: ezdxf would stamp each file with the time 
 GUIDs (``$TDCREATE``, ``$TDUPDATE``, ``$VERSIONGUID``, ``$FINGERPRINTGUID``), and its
 ``write_fixed_meta_data_for_testing`` option writes fixed ones instead (2000-01-01, a
 constant GUID). A program of ours is a function of its request — cached, compared, the
-command line's local answer equal to the server's — so the option is set whenever this
-module writes (only our writers write DXF in this process). ezdxf itself is imported then
-too: it takes a quarter of a second, which every process that names a writer (the client,
-the command line) would otherwise pay.
+command line's local answer equal to the server's — so the option is on while this module
+writes, and as it was otherwise (the option is ezdxf's, process-wide: an application that
+imports arcspline and writes DXF of its own keeps its time stamps). ezdxf itself is imported
+then too: it takes a quarter of a second, which every process that names a writer (the
+client, the command line) would otherwise pay.
 """
 
 from __future__ import annotations
 
+import contextlib
 import io
 import math
-from collections.abc import Sequence
+import threading
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Literal, get_args
 
@@ -150,16 +153,37 @@ def _add_polyline(msp: Modelspace, spline: ArcSpline, layer: str) -> None:
 
 
 def _new_document(units: Units) -> Drawing:
-    import ezdxf
     from ezdxf.filemanagement import new
 
-    # ezdxf re-exports its options object without declaring it public.
-    ezdxf.options.write_fixed_meta_data_for_testing = True  # type: ignore[attr-defined]
     return new(DXF_VERSION, units=INSUNITS[units])
+
+
+#: Our writes with the fixed metadata, one at a time (the option is process-wide).
+_FIXED_METADATA = threading.Lock()
+
+
+@contextlib.contextmanager
+def _fixed_metadata() -> Iterator[None]:
+    """ezdxf's fixed metadata while a document is made and written (see the module
+    docstring), and the option as it was afterwards."""
+    from ezdxf import options  # type: ignore[attr-defined]  # re-exported, not declared
+
+    with _FIXED_METADATA:
+        before = options.write_fixed_meta_data_for_testing
+        options.write_fixed_meta_data_for_testing = True
+        try:
+            yield
+        finally:
+            options.write_fixed_meta_data_for_testing = before
 
 
 def write_dxf(parts: Sequence[Part], options: DxfOptions) -> str:
     """The drawing described in the module docstring, as DXF text."""
+    with _fixed_metadata():
+        return _write(parts, options)
+
+
+def _write(parts: Sequence[Part], options: DxfOptions) -> str:
     splines = [spline for spline, _ in parts]
     check_finite(splines, "DXF")
     doc = _new_document(options.units)
