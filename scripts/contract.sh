@@ -2,7 +2,7 @@
 # Checks the HTTP contract openapi/openapi.json with the tools pinned in contract/ (installed
 # by `npm ci --prefix contract`, which `make contract` runs when package-lock.json changes):
 #
-#   1. `redocly lint` with contract/redocly.yaml: any error fails (warnings are printed);
+#   1. `redocly lint` with contract/redocly.yaml (recommended-strict: every rule an error): any problem fails;
 #   2. openapi-typescript generates the TypeScript types into a temporary directory and
 #      `tsc --noEmit --strict` checks them together with contract/check.ts, which builds every
 #      request with its required fields alone and reads every response.

@@ -32,6 +32,8 @@ from arcspline.outputs.svg_document import SvgDocumentOptions
         ("text/x-gcode;q=0, */*", "json"),  # q=0: not acceptable
         ("text/x-gcode;q=zero, image/svg+xml;q=0.1", "svg"),  # a bad q counts as 0
         ("text/html, application/xhtml+xml, */*;q=0.8", "json"),  # a browser
+        ("text/*", "gcode"),  # a range: its one output
+        ("image/*", "svg"),  # a range: its first output
     ],
 )
 def test_accept_chooses_the_best_output_it_names(accept: str | None, output: str) -> None:
@@ -43,7 +45,7 @@ def test_what_the_request_chose_wins_over_accept() -> None:
     assert negotiate("json", "application/pdf") == "json"
 
 
-@pytest.mark.parametrize("accept", ["application/pdf", "image/*", "text/x-gcode;q=0"])
+@pytest.mark.parametrize("accept", ["application/pdf", "audio/*", "text/x-gcode;q=0"])
 def test_an_accept_naming_nothing_we_give_is_not_acceptable(accept: str) -> None:
     with pytest.raises(ProblemError) as info:
         negotiate(None, accept)

@@ -44,10 +44,11 @@ def test_outputs_never_meet_nor_replace_an_input(tmp_path: Path) -> None:
     a_svg, a_dxf, b_json = Path("in/a.svg"), Path("in/a.dxf"), Path("in/b.json")
     outputs = plan([a_svg, a_dxf, b_json], None, "json").outputs
     assert outputs == {
-        a_svg: Path("in/a.svg.json"),
-        a_dxf: Path("in/a.dxf.json"),
-        b_json: Path("in/b.json.json"),
+        a_svg: Path("in/a.svg.arcs.json"),
+        a_dxf: Path("in/a.dxf.arcs.json"),
+        b_json: Path("in/b.arcs.json"),
     }
+    assert plan([a_svg], None, "svg").outputs == {a_svg: Path("in/a.arcs.svg")}
     assert plan([a_svg, b_json], tmp_path, "gcode").outputs == {
         a_svg: tmp_path / "a.ngc",
         b_json: tmp_path / "b.ngc",
@@ -83,8 +84,23 @@ def test_json_beside_each_input_without_gcode_options(cli: Invoke, tmp_path: Pat
     shutil.copy(DATA / "path.json", tmp_path)
     result = cli("batch", str(tmp_path / "*.*"), "-t", "0.01", "-j", "1")
     assert result.exit_code == 0, result.stderr
-    drawing = json.loads((tmp_path / "rounded_rect.json").read_text())
+    drawing = json.loads((tmp_path / "rounded_rect.arcs.json").read_text())
     assert drawing["stats"]["toolpath_count"] == 2
-    path = json.loads((tmp_path / "path.json.json").read_text())
+    path = json.loads((tmp_path / "path.arcs.json").read_text())
     assert path["stats"]["tolerance"] == 0.01
     assert "arcspline batch: 2 written, 0 failed" in result.stderr
+
+
+def test_a_second_batch_beside_its_inputs_takes_only_the_inputs(
+    cli: Invoke, tmp_path: Path
+) -> None:
+    shutil.copy(DRAWING_SVG, tmp_path)
+    shutil.copy(DATA / "path.json", tmp_path)
+    for fmt in ("json", "svg", "json"):
+        result = cli("batch", str(tmp_path), "-t", "0.01", "-f", fmt, "-j", "1")
+        assert result.exit_code == 0, result.stderr
+        assert "arcspline batch: 2 written, 0 failed" in result.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == [
+        "path.arcs.json", "path.arcs.svg", "path.json",
+        "rounded_rect.arcs.json", "rounded_rect.arcs.svg", "rounded_rect.svg",
+    ]  # fmt: skip

@@ -65,6 +65,8 @@ def test_files_and_the_rest() -> None:
     assert describe(missing) == "No such file or directory: part.svg"
     assert describe(CommandError("no such file: x")) == "no such file: x"
     assert describe(UsageError("required", "--tolerance")) == "required (--tolerance)"
+    named = UsageError("a program needs the G-code options: give --feed-rate", "--feed-rate")
+    assert describe(named) == "a program needs the G-code options: give --feed-rate"
     assert describe(ValueError("odd\nthing")) == (
         "ValueError: odd thing (--debug shows the traceback)"
     )

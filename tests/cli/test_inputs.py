@@ -117,3 +117,10 @@ def test_a_binary_dxf_is_found_by_its_sentinel_and_sent_as_base64(tmp_path: Path
 )
 def test_sniffing(content: bytes, found: str | None) -> None:
     assert sniff(content) == found
+
+
+def test_a_json_request_may_start_with_a_byte_order_mark(tmp_path: Path) -> None:
+    request = tmp_path / "bom.json"
+    request.write_bytes(b'\xef\xbb\xbf{"path": "M 0 0 L 1 1", "tolerance": 0.1}')
+    source = resolve(str(request), NO_STDIN)
+    assert (source.kind, source.request["path"]) == ("path", "M 0 0 L 1 1")

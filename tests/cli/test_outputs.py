@@ -60,5 +60,13 @@ def test_an_unwritable_place_is_found_before_the_work(tmp_path: Path) -> None:
 
 def test_a_batch_output_is_named_by_its_input() -> None:
     assert output_path(Path("in/a.svg"), None, "gcode", False) == Path("in/a.ngc")
-    assert output_path(Path("in/a.svg"), Path("out"), "dxf", False) == Path("out/a.dxf")
-    assert output_path(Path("in/a.json"), None, "json", True) == Path("in/a.json.json")
+    assert output_path(Path("in/a.svg"), Path("out"), "dxf", False) == Path("out/a.arcs.dxf")
+    assert output_path(Path("in/a.json"), None, "json", True) == Path("in/a.json.arcs.json")
+
+
+def test_the_output_may_not_replace_the_input(tmp_path: Path) -> None:
+    drawing = tmp_path / "part.svg"
+    drawing.write_text("<svg/>")
+    with pytest.raises(UsageError, match="is the input"):
+        check_writable(tmp_path / "." / "part.svg", str(drawing))
+    check_writable(tmp_path / "part.arcs.svg", str(drawing))

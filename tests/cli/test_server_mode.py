@@ -97,3 +97,9 @@ def test_an_unreachable_server_is_one_line_naming_it(cli: Invoke) -> None:
         assert result.exit_code == 1
         assert result.stderr.startswith(f"error: could not reach {url} (")
         assert len(result.stderr.splitlines()) == 1
+
+
+def test_a_server_without_a_scheme_is_a_usage_error(cli: Invoke) -> None:
+    result = cli("approx", str(SPIRAL), "--server", "localhost:8000")
+    assert result.exit_code == 2
+    assert "--server takes a URL such as http://localhost:8000" in result.stderr

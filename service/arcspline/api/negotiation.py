@@ -42,6 +42,9 @@ _ACCEPT_ALIASES: dict[str, OutputFormat] = {
     "text/plain": "gcode",
     "*/*": "json",
     "application/*": "json",
+    # Ranges (RFC 9110 §12.5.1) answer with the one output of the range, or the first.
+    "text/*": "gcode",
+    "image/*": "svg",
 }
 _BY_MEDIA_TYPE = {media: name for name, media in OUTPUT_MEDIA_TYPES.items()} | _ACCEPT_ALIASES
 _EXTENSIONS = {"gcode": "ngc", "dxf": "dxf", "svg": "svg"}

@@ -24,7 +24,7 @@ from arcspline.client import AsyncClient
 from .errors import CommandError, UsageError, describe, stderr
 from .inputs import SUFFIXES, read_file
 from .options import Format, Overrides
-from .outputs import output_path, write
+from .outputs import OWN_OUTPUTS, output_path, write
 from .summary import Outcome
 from .work import connect, produce
 
@@ -40,17 +40,20 @@ class Plan:
 
 def expand(patterns: Sequence[str]) -> list[Path]:
     """The files named: a folder's SVG, DXF and JSON files, a glob's matches (``**``
-    recurses), or a file itself; in the order given, each once."""
+    recurses), or a file itself; in the order given, each once. A folder or a glob leaves
+    out this command's own outputs (``*.arcs.json``, ``.svg``, ``.dxf``)."""
     found: dict[Path, None] = {}
     for pattern in patterns:
         path = Path(pattern)
-        if path.is_dir():
-            matches = [p for p in sorted(path.iterdir()) if p.suffix.lower() in SUFFIXES]
-        elif path.is_file():
+        if path.is_file():
             matches = [path]
         else:
-            matches = [Path(p) for p in sorted(glob.glob(pattern, recursive=True))]
-            matches = [p for p in matches if p.is_file()]
+            if path.is_dir():
+                matches = [p for p in sorted(path.iterdir()) if p.suffix.lower() in SUFFIXES]
+            else:
+                matches = [Path(p) for p in sorted(glob.glob(pattern, recursive=True))]
+                matches = [p for p in matches if p.is_file()]
+            matches = [p for p in matches if not p.name.lower().endswith(OWN_OUTPUTS)]
         if not matches:
             raise CommandError(f"no files in {pattern}")
         found.update(dict.fromkeys(matches))

@@ -28,7 +28,7 @@ async def approximate_input(
     source = resolve(argument, typer.get_binary_stream("stdin"))
     fmt = format_of(output, fmt, source.output or "json")
     request = overrides.apply(source.request, source.kind)
-    check_writable(output)
+    check_writable(output, source.name)
     async with connect(server, 0, 2) as client:
         product = await produce(client, source.kind, request, fmt, stats=not quiet)
     write(product.content, output)
@@ -51,7 +51,7 @@ async def preview_input(
     """``preview``: the picture of one INPUT's approximation."""
     source = resolve(argument, typer.get_binary_stream("stdin"))
     request = overrides.apply(source.request, source.kind)
-    check_writable(output)
+    check_writable(output, source.name)
     async with connect(server, 0, 1) as client:
         content = await picture(client, request)
     write(content, output)

@@ -95,7 +95,8 @@ def describe(error: BaseException) -> str:
     elif isinstance(error, CommandError):
         text = str(error)
     elif isinstance(error, UsageError):
-        text = f"{error} ({error.option})" if error.option else str(error)
+        named = error.option is None or error.option in str(error)
+        text = str(error) if named else f"{error} ({error.option})"
     elif _is_transport_error(error):
         text = _transport_error(error)
     elif _is_validation_error(error):

@@ -112,7 +112,7 @@ def _json_request(content: bytes, name: str) -> Source:
     import orjson
 
     try:
-        request = orjson.loads(content)
+        request = orjson.loads(content.removeprefix(codecs.BOM_UTF8))
     except orjson.JSONDecodeError as error:
         raise CommandError(f"{name}: not valid JSON ({error})") from None
     if not isinstance(request, dict):

@@ -21,8 +21,16 @@ SUFFIXES: dict[str, Format] = {
     ".svg": "svg",
     ".json": "json",
 }
-#: The suffix each format is written with when the command names the file.
-EXTENSIONS: dict[Format, str] = {"gcode": ".ngc", "dxf": ".dxf", "svg": ".svg", "json": ".json"}
+#: The suffix each format is written with when the command names the file: a format that
+#: is also an input (JSON, SVG, DXF) is marked ``.arcs``, so that a later batch over the
+#: same folder does not take its own outputs for inputs.
+EXTENSIONS: dict[Format, str] = {
+    "gcode": ".ngc",
+    "dxf": ".arcs.dxf",
+    "svg": ".arcs.svg",
+    "json": ".arcs.json",
+}
+OWN_OUTPUTS = tuple(suffix for suffix in EXTENSIONS.values() if suffix.startswith(".arcs."))
 STDOUT = Path("-")
 
 
@@ -39,10 +47,13 @@ def format_of(output: Path | None, given: Format | None, default: Format) -> For
     return found
 
 
-def check_writable(output: Path | None) -> None:
-    """Fail before the work when ``output`` cannot be written (no such folder)."""
+def check_writable(output: Path | None, source: str | None = None) -> None:
+    """Fail before the work when ``output`` cannot be written (no such folder), or would
+    replace ``source``, the input file."""
     if output is None or output == STDOUT:
         return
+    if source is not None and Path(source).is_file() and output.resolve() == Path(source).resolve():
+        raise UsageError(f"{output} is the input: the output would replace it", "-o")
     parent = output.parent
     if not parent.is_dir():
         raise CommandError(f"no such folder: {parent} (for {output})")

@@ -45,6 +45,8 @@ async def connect(server: str | None, workers: int, concurrency: int) -> AsyncIt
     ``concurrency`` files may be in flight, each with up to two requests (a document and
     its statistics); the local app admits them all rather than answer 503.
     """
+    if server is not None and not server.startswith(("http://", "https://")):
+        raise UsageError(f"--server takes a URL such as http://{server}", "--server")
     if server is None:
         from arcspline.settings import get_settings
 
@@ -88,10 +90,10 @@ async def produce(
     started = time.perf_counter()
     answer = answer_of(client, kind)
     if fmt == "json":
-        # The service's own bytes, read once more for the statistics.
+        # The service's own bytes, read once more for the statistics (if they are wanted).
         document = await client.document(request, "json")
-        response = MODELS[kind].model_validate_json(document.content)
-        return Product(document.content, summarize(response), time.perf_counter() - started)
+        summary = summarize(MODELS[kind].model_validate_json(document.content)) if stats else None
+        return Product(document.content, summary, time.perf_counter() - started)
     if fmt == "gcode":
         response = await answer(request)
         return Product(_program(response), summarize(response), time.perf_counter() - started)
