@@ -12,8 +12,7 @@ from importlib.metadata import version
 from typing import Any
 
 from .examples import OPERATIONS
-from .negotiation import OUTPUT_MEDIA_TYPES
-from .schemas import OUTPUT_FORMATS
+from .schemas import OUTPUT_FORMATS, OUTPUT_MEDIA_TYPES
 
 #: ``info.version``: the package's version (the contract is versioned with the code).
 VERSION = version("arcspline")

@@ -25,17 +25,10 @@ from arcspline.worker.jobs import Document, Output
 from .drawing_schemas import DxfRequest
 from .errors import ProblemError, problem
 from .runtime import runtime_of
-from .schemas import OutputFormat
+from .schemas import OUTPUT_MEDIA_TYPES, OutputFormat
 
 JobT = TypeVar("JobT")
 
-#: Each output's media type.
-OUTPUT_MEDIA_TYPES: dict[OutputFormat, str] = {
-    "json": "application/json",
-    "gcode": "text/x-gcode",
-    "dxf": "image/vnd.dxf",
-    "svg": "image/svg+xml",
-}
 #: What an ``Accept`` header may name, beyond :data:`OUTPUT_MEDIA_TYPES`.
 _ACCEPT_ALIASES: dict[str, OutputFormat] = {
     "application/dxf": "dxf",

@@ -48,6 +48,13 @@ PAPER_EXAMPLE: dict[str, Any] = {
 #: What an approximation is answered with: JSON, or one document alone.
 OutputFormat = Literal["json", "gcode", "dxf", "svg"]
 OUTPUT_FORMATS: tuple[str, ...] = get_args(OutputFormat)
+#: Each output's media type (the server answers with it, the client asks for it).
+OUTPUT_MEDIA_TYPES: dict[OutputFormat, str] = {
+    "json": "application/json",
+    "gcode": "text/x-gcode",
+    "dxf": "image/vnd.dxf",
+    "svg": "image/svg+xml",
+}
 #: The default of ``ARCSPLINE_BATCH_MAX_JOBS``: what the schema shows as a batch's
 #: ``maxItems`` (the server's configured limit applies, with a 413).
 BATCH_MAX_JOBS = Settings.model_fields["batch_max_jobs"].default

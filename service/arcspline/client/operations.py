@@ -21,9 +21,11 @@ from pydantic import BaseModel
 from arcspline.api.drawing_schemas import DrawingRequest, DrawingResponse
 from arcspline.api.path_schemas import PathRequest, PathResponse
 from arcspline.api.schemas import (
+    OUTPUT_MEDIA_TYPES,
     ApproximateRequest,
     ApproximateResponse,
     HealthResponse,
+    OutputFormat,
     ReadyResponse,
 )
 
@@ -33,7 +35,7 @@ M = TypeVar("M", bound=BaseModel)
 Kind = Literal["spiral", "path", "drawing"]
 #: What an approximation can be answered with: its JSON as the service wrote it, or one
 #: document alone.
-Output = Literal["json", "gcode", "dxf", "svg"]
+Output = OutputFormat
 AnyRequest: TypeAlias = ApproximateRequest | PathRequest | DrawingRequest | Mapping[str, Any]
 
 #: Each kind's endpoints: approximate, batch (none for drawings), preview.
@@ -148,15 +150,6 @@ def _post(kind: Kind, request: AnyRequest, read: Callable[[httpx.Response], T]) 
     if given != kind:
         raise ValueError(f"this operation takes a {kind} request, not a {given} one")
     return Call("POST", ENDPOINTS[kind][0], encode(request), "application/json", read)
-
-
-#: Media types of the documents, as the service names them.
-OUTPUT_MEDIA_TYPES: dict[Output, str] = {
-    "json": "application/json",
-    "gcode": "text/x-gcode",
-    "dxf": "image/vnd.dxf",
-    "svg": "image/svg+xml",
-}
 
 
 def document(request: AnyRequest, output: Output) -> Call[Document]:
