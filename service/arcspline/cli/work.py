@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import asyncio
 import time
-from collections.abc import AsyncIterator, Callable, Coroutine
+from collections.abc import AsyncIterator
 from contextlib import asynccontextmanager
 from dataclasses import dataclass
 from typing import Any
@@ -68,16 +68,10 @@ class Product:
     seconds: float
 
 
-def answer_of(
-    client: AsyncClient, kind: Kind
-) -> Callable[[dict[str, Any]], Coroutine[Any, Any, Answer]]:
-    """The JSON operation for a request of ``kind``."""
-    operations: dict[Kind, Callable[[dict[str, Any]], Coroutine[Any, Any, Answer]]] = {
-        "spiral": client.approximate,
-        "path": client.approximate_path,
-        "drawing": client.approximate_drawing,
-    }
-    return operations[kind]
+async def _answer(client: AsyncClient, kind: Kind, request: dict[str, Any]) -> tuple[bytes, Answer]:
+    """The JSON answer to ``request``: the service's bytes, and its model."""
+    document = await client.document(request, "json")
+    return document.content, MODELS[kind].model_validate_json(document.content)
 
 
 async def produce(
@@ -88,25 +82,21 @@ async def produce(
     if fmt == "gcode" and not request.get("gcode"):
         raise UsageError("a program needs the G-code options: give --feed-rate", "--feed-rate")
     started = time.perf_counter()
-    answer = answer_of(client, kind)
-    if fmt == "json":
-        # The service's own bytes, read once more for the statistics (if they are wanted).
-        document = await client.document(request, "json")
-        summary = summarize(MODELS[kind].model_validate_json(document.content)) if stats else None
-        return Product(document.content, summary, time.perf_counter() - started)
-    if fmt == "gcode":
-        response = await answer(request)
-        return Product(_program(response), summarize(response), time.perf_counter() - started)
-    if not stats:
+    if not stats and fmt != "gcode":  # a program comes from the JSON answer anyway
         document = await client.document(request, fmt)
         return Product(document.content, None, time.perf_counter() - started)
+    if fmt in ("json", "gcode"):
+        content, response = await _answer(client, kind, request)
+        if fmt == "gcode":
+            content = _program(response)
+        return Product(content, summarize(response), time.perf_counter() - started)
     try:
         async with asyncio.TaskGroup() as tasks:
             document_task = tasks.create_task(client.document(request, fmt))
-            answer_task = tasks.create_task(answer(request))
+            answer_task = tasks.create_task(_answer(client, kind, request))
     except BaseExceptionGroup as group:  # the first failure says it; the other is cancelled
         raise group.exceptions[0] from None
-    summary = summarize(answer_task.result())
+    summary = summarize(answer_task.result()[1])
     return Product(document_task.result().content, summary, time.perf_counter() - started)
 
 
