@@ -31,18 +31,9 @@ class InlinePool(WorkerPool):
     def __init__(self, size: int, capacity: int, *, retry_after_s: float = 1.0) -> None:
         super().__init__(size, capacity, start_method="spawn", retry_after_s=retry_after_s)
 
-    @property
-    def pids(self) -> list[int]:
-        return []
-
     async def start(self) -> None:
+        # Nothing to start; draining is the pool's own (it has no workers to stop).
         self.state = "ready"
-
-    async def drain(self, timeout_s: float) -> None:
-        self.state = "draining"
-        with contextlib.suppress(TimeoutError):
-            await asyncio.wait_for(self._idle.wait(), timeout_s)
-        self.state = "stopped"
 
     async def _execute(
         self,
