@@ -9,6 +9,8 @@ from typing import Any
 
 import numpy as np
 
+from tests.support import oracle
+
 
 @dataclass(frozen=True)
 class JsonSpline:
@@ -37,23 +39,17 @@ def spline_from_json(body: dict[str, Any]) -> JsonSpline:
 
 
 def control_points(spiral: dict[str, Any]) -> np.ndarray:
-    """The four control points of a request's spiral, from the paper's §1 formulas::
+    """The four control points of a request's spiral: as given, or from the paper's §1
+    formulas in the oracle's exact arithmetic (:func:`oracle.paper_control_points`)::
 
     a = 25·tan θ / (54·|c|·cos θ),  b = 5·tan θ / (9·|c|),
     B1 = B0 + a·T0,  B2 = B1 + a·T0,  B3 = B2 + b·T1  (T1: T0 turned by ±θ).
     """
     if "control_points" in spiral:
         return np.array(spiral["control_points"], dtype=np.float64)
-    theta = math.radians(spiral["turn_angle_deg"])
-    c = spiral["end_curvature"]
-    a = 25 * math.tan(theta) / (54 * abs(c) * math.cos(theta))
-    b = 5 * math.tan(theta) / (9 * abs(c))
-    t0 = np.array(spiral["start_tangent"], dtype=np.float64)
-    t0 /= np.hypot(*t0)
-    phi = math.copysign(theta, c)
-    t1 = np.array([[math.cos(phi), -math.sin(phi)], [math.sin(phi), math.cos(phi)]]) @ t0
-    b0 = np.array(spiral["start"], dtype=np.float64)
-    return np.array([b0, b0 + a * t0, b0 + 2 * a * t0, b0 + 2 * a * t0 + b * t1])
+    return oracle.paper_control_points(
+        spiral["start"], spiral["start_tangent"], spiral["turn_angle_deg"], spiral["end_curvature"]
+    )
 
 
 def same_json(a: Any, b: Any, rel: float = 1e-12) -> bool:

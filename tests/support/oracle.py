@@ -11,7 +11,11 @@ everything by its own computation:
 * the two-sided distance between spiral and arc spline by dense sampling, every sampled
   maximum refined by golden-section search; distances to the spiral are exact foot points
   (Newton on ``(Q(u) − P)·Q'(u) = 0`` started from a global coarse search), not chords;
-* G1 continuity and end conditions, each arc's internal consistency, and the statistics.
+* G1 continuity and end conditions, each arc's internal consistency, and the statistics;
+* the control points of the paper's five parameters (:func:`paper_control_points`), in
+  50-digit decimal arithmetic with θ in radians by its own Taylor series: the core's
+  floating-point formula (``cos(radians θ)``, which near 90° loses the relative accuracy of
+  ``cos θ``) is never used, so a test built on it cannot share its error.
 
 Arithmetic that can cancel (the distance to an arc of huge radius) runs in ``np.longdouble``
 (64-bit significand on x86-64) in a frame whose origin is the spiral's first control point.
@@ -24,6 +28,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
+from decimal import Decimal, localcontext
 from typing import Any
 
 import numpy as np
@@ -65,6 +70,78 @@ def _rot90(a: Array) -> Array:
 def _angle_between(a: Array, b: Array) -> Array:
     """Unsigned angle between two vectors, ``atan2(|a×b|, a·b)`` (accurate near 0)."""
     return np.arctan2(np.abs(_cross(a, b)), _dot(a, b))
+
+
+# -- the paper's spiral from its parameters, exactly -------------------------------------
+
+#: Working precision of :func:`paper_control_points`, in decimal digits: 50 survive the
+#: cancellation of ``cos θ`` near 90° (its Taylor terms reach ~1.6 while it can be ~1e-16).
+DECIMAL_DIGITS = 70
+#: π to 80 digits.
+PI = Decimal("3.1415926535897932384626433832795028841971693993751058209749445923078164062862")
+
+
+def _cos_sin(x: Decimal) -> tuple[Decimal, Decimal]:
+    """``cos x`` and ``sin x`` by their Taylor series, ``0 ≤ x ≤ 2`` (all terms kept until
+    they drop below the working precision)."""
+    cos, sin, term, k = Decimal(0), Decimal(0), Decimal(1), 0
+    limit = Decimal(10) ** -(DECIMAL_DIGITS + 5)
+    while abs(term) > limit or k < 4:
+        if k % 4 == 0:
+            cos += term
+        elif k % 4 == 1:
+            sin += term
+        elif k % 4 == 2:
+            cos -= term
+        else:
+            sin -= term
+        k += 1
+        term = term * x / k
+    return cos, sin
+
+
+def paper_control_points(
+    start: Sequence[float], start_tangent: Sequence[float], turn_angle_deg: float, c: float
+) -> Array:
+    """The four control points of docs/method.md §1 for the parameters exactly as given
+    (each float taken at its exact binary value), rounded to float64 only at the end::
+
+        a = 25·tan θ / (54·|c|·cos θ),  b = 5·tan θ / (9·|c|),
+        B1 = B0 + a·T0,  B2 = B1 + a·T0,  B3 = B2 + b·T1  (T1: T0 turned by θ, sign of c).
+    """
+    with localcontext() as ctx:
+        ctx.prec = DECIMAL_DIGITS
+        theta = Decimal(turn_angle_deg) * PI / 180
+        cos, sin = _cos_sin(theta)
+        sigma = 1 if c > 0 else -1
+        tx, ty = Decimal(start_tangent[0]), Decimal(start_tangent[1])
+        norm = (tx * tx + ty * ty).sqrt()
+        tx, ty = tx / norm, ty / norm
+        a = 25 * sin / (54 * abs(Decimal(c)) * cos * cos)
+        b = 5 * sin / (9 * abs(Decimal(c)) * cos)
+        ux, uy = cos * tx - sigma * sin * ty, sigma * sin * tx + cos * ty
+        x0, y0 = Decimal(start[0]), Decimal(start[1])
+        points = [
+            (x0, y0),
+            (x0 + a * tx, y0 + a * ty),
+            (x0 + 2 * a * tx, y0 + 2 * a * ty),
+            (x0 + 2 * a * tx + b * ux, y0 + 2 * a * ty + b * uy),
+        ]
+        return np.array([[float(x), float(y)] for x, y in points], dtype=np.float64)
+
+
+def paper_end_tangent(
+    start_tangent: Sequence[float], turn_angle_deg: float, c: float
+) -> tuple[float, float]:
+    """``T1``, the unit end tangent of the paper's spiral, in the same exact arithmetic."""
+    with localcontext() as ctx:
+        ctx.prec = DECIMAL_DIGITS
+        cos, sin = _cos_sin(Decimal(turn_angle_deg) * PI / 180)
+        sigma = 1 if c > 0 else -1
+        tx, ty = Decimal(start_tangent[0]), Decimal(start_tangent[1])
+        norm = (tx * tx + ty * ty).sqrt()
+        tx, ty = tx / norm, ty / norm
+        return float(cos * tx - sigma * sin * ty), float(sigma * sin * tx + cos * ty)
 
 
 # -- the Bézier curve ------------------------------------------------------------------

@@ -431,3 +431,27 @@ def test_stats_violations_checks_that_u_ranges_tile() -> None:
     segs = [line((0, 0), (1, 0), (0, 0.4)), line((1, 0), (3, 0), (0.5, 1))]
     problems = oracle.stats_violations(STRAIGHT, fake_spline(STRAIGHT, segs, 1.0), 1.0)
     assert any("do not tile" in p for p in problems), problems
+
+
+@pytest.mark.parametrize("c", [2.0, -2.0])
+def test_paper_control_points_match_the_closed_form_at_60_degrees(c: float) -> None:
+    # cos 60° = 1/2, sin 60° = √3/2: a = 25·sinθ/(54·|c|·cos²θ) = 50√3/(54·|c|),
+    # b = 5·sinθ/(9·|c|·cosθ) = 5√3/(9·|c|), T1 = (1/2, ±√3/2).
+    r3 = math.sqrt(3.0)
+    a, b = 50 * r3 / (54 * abs(c)), 5 * r3 / (9 * abs(c))
+    sign = math.copysign(1.0, c)
+    want = [(0.0, 0.0), (a, 0.0), (2 * a, 0.0), (2 * a + b / 2, sign * b * r3 / 2)]
+    got = oracle.paper_control_points((0.0, 0.0), (2.0, 0.0), 60.0, c)
+    np.testing.assert_allclose(got, want, rtol=4 * oracle.EPS, atol=0)
+    t1 = oracle.paper_end_tangent((2.0, 0.0), 60.0, c)
+    np.testing.assert_allclose(t1, (0.5, sign * r3 / 2), rtol=4 * oracle.EPS, atol=0)
+
+
+def test_paper_control_points_near_90_degrees_keep_the_leg_ratio() -> None:
+    # |B3 − B2| / |B1 − B0| = 1.2·cos θ, with cos(90° − φ) = sin φ ≈ φ − φ³/6 for tiny φ.
+    theta_deg = 90.0 - 1e-6
+    phi = math.pi / 180 * (90.0 - theta_deg)  # the subtraction is exact (Sterbenz)
+    cp = oracle.paper_control_points((0.0, 0.0), (1.0, 0.0), theta_deg, 1.0)
+    ratio = math.dist(cp[2], cp[3]) / math.dist(cp[0], cp[1])
+    # The points are ~1e15 and the last leg ~1e7: its rounding is ~1e-8 of it.
+    assert ratio == pytest.approx(1.2 * (phi - phi**3 / 6), rel=1e-7)

@@ -247,8 +247,7 @@ def deviation_of_arc(
     """:func:`arc_deviation` for Python (tests): ``(value, u)`` for the polynomial piece
     ``(3u + k·u³, m·u³)`` — the paper's canonical spiral for its ``(k, m)`` — and the arc from
     ``(jx, jy)`` with direction ``phi_rad`` to ``(ex, ey)``."""
-    cdef Piece s = spiral_piece(0.0)
-    s.x[3], s.y[3] = k, m
+    cdef Piece s = spiral_piece(k, m)
     cdef Peak peak = arc_deviation(
         &s, vec(jx, jy), cos(phi_rad), sin(phi_rad), kappa, vec(ex, ey), lo, hi, tolerance
     )

@@ -33,20 +33,9 @@ IDS = [f"theta={s[2]}-c={s[3]}" for s in SPIRALS]
 
 
 def expected_control_points(start, tangent, theta_deg, c) -> np.ndarray:
-    """§1: a = 25 tanθ / (54 |c| cosθ), b = 5 tanθ / (9 |c|), T1 = T0 turned by ±θ."""
-    th = math.radians(theta_deg)
-    t0 = np.array(tangent, dtype=float) / math.hypot(*tangent)
-    phi = math.copysign(th, c)
-    t1 = np.array(
-        [
-            math.cos(phi) * t0[0] - math.sin(phi) * t0[1],
-            math.sin(phi) * t0[0] + math.cos(phi) * t0[1],
-        ]
-    )
-    a = 25 * math.tan(th) / (54 * abs(c) * math.cos(th))
-    b = 5 * math.tan(th) / (9 * abs(c))
-    b0 = np.array(start, dtype=float)
-    return np.array([b0, b0 + a * t0, b0 + 2 * a * t0, b0 + 2 * a * t0 + b * t1])
+    """§1 by the oracle's exact arithmetic: a = 25 tanθ / (54 |c| cosθ), b = 5 tanθ / (9 |c|),
+    T1 = T0 turned by ±θ (never the core's floating-point cos(radians θ))."""
+    return oracle.paper_control_points(start, tangent, theta_deg, c)
 
 
 def cross(a, b) -> float:

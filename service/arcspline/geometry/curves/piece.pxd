@@ -18,7 +18,7 @@ v²)`` and ``ΔW = w1 + w2(u + v)``, so that short pieces keep full relative pre
 """
 
 from libc.float cimport DBL_EPSILON
-from libc.math cimport atan2, cos, fabs, sin
+from libc.math cimport atan2, fabs
 
 from arcspline.geometry.maths.quadrature cimport HALF_NODES, NODES, WEIGHTS
 from arcspline.geometry.maths.vec cimport Vec, norm, vec
@@ -38,12 +38,13 @@ cdef struct Piece:
     bint rational     # w1 or w2 non-zero
 
 
-cdef inline Piece spiral_piece(double turn_angle_rad) noexcept nogil:
-    """The paper's canonical spiral of turn angle θ (docs/method.md §2)."""
-    cdef double c = cos(turn_angle_rad), s = sin(turn_angle_rad)
+cdef inline Piece spiral_piece(double k, double m) noexcept nogil:
+    """The paper's canonical spiral ``(3u + k·u³, m·u³)`` (docs/method.md §2). It takes
+    ``k = 1.2·cos²θ − 1`` and ``m = 1.2·cos θ·sin θ``, not θ: near 90° ``cos`` of θ in
+    radians has lost the relative accuracy that ``cos θ`` needs (docs/method.md §1)."""
     cdef Piece p
-    p.x[0], p.x[1], p.x[2], p.x[3] = 0.0, 3.0, 0.0, 1.2 * c * c - 1.0
-    p.y[0], p.y[1], p.y[2], p.y[3] = 0.0, 0.0, 0.0, 1.2 * c * s
+    p.x[0], p.x[1], p.x[2], p.x[3] = 0.0, 3.0, 0.0, k
+    p.y[0], p.y[1], p.y[2], p.y[3] = 0.0, 0.0, 0.0, m
     p.w[0], p.w[1], p.w[2] = 1.0, 0.0, 0.0
     p.rational = False
     return p

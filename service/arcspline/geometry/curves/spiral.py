@@ -14,6 +14,13 @@ Up to a similarity (translate ``B0`` to the origin, rotate ``T0`` onto +x, mirro
 which is the curve piece the kernels fit (``curves/piece.pxd``); this module
 holds the spiral as the user gave it, evaluates it in world coordinates and maps canonical
 results back.
+
+θ enters only through ``cos θ`` and ``sin θ``, each computed to a few ulps of itself: above
+45° from the complement ``90° − θ`` (exact in degrees), since ``cos(radians(θ))`` near 90°
+keeps only the absolute accuracy of ``radians(θ)`` and ``a ∝ 1/cos²θ`` would carry its
+relative error (docs/method.md §1, "θ near 90°"). A spiral given by control points is fitted
+as those very points (its frame is their cubic), so the answer is held to the given curve,
+its ends and its end tangents (docs/method.md §1, "Control points").
 """
 
 from __future__ import annotations
@@ -31,10 +38,13 @@ from ..fit.batch import PIECE_KINDS, frame_table
 from ..measure import circle_deviations, line_deviations
 from ..spline import FloatArray, Point
 from . import bezier
-from .piece import spiral_length
+from .piece import cubic_length
 
 #: Control points are accepted as "of the paper's form" when each condition holds to this
-#: relative accuracy: enough for coordinates printed with ~7 significant digits.
+#: relative accuracy: enough for coordinates printed with ~7 significant digits. The bound
+#: keeps the input within the method's domain (a spiral: curvature monotone, turning less
+#: than 90°); it does not bound the answer's accuracy, which is measured against the given
+#: points themselves, as they are fitted.
 FORM_RTOL = 1e-6
 
 #: Coordinates and the spiral's size ``a`` stay within ``[1/MAX_MAGNITUDE, MAX_MAGNITUDE]`` so
@@ -57,18 +67,57 @@ def _pair(field: str, value: Sequence[float]) -> tuple[float, float]:
     return x, y
 
 
+def turn_cos_sin(turn_angle_deg: float) -> tuple[float, float]:
+    """``(cos θ, sin θ)`` of a turn angle in degrees, ``0 ≤ θ ≤ 90``, each to a few ulps of
+    itself. Above 45° they are the sine and cosine of the complement ``φ = 90° − θ``, which
+    is exact in floating point (Sterbenz: ``θ`` within a factor two of 90): ``radians(θ)``
+    rounds by ulps of π/2, which near 90° is a large relative error of ``cos θ``."""
+    if turn_angle_deg <= 45.0:
+        theta_rad = math.radians(turn_angle_deg)
+        return math.cos(theta_rad), math.sin(theta_rad)
+    phi_rad = math.radians(90.0 - turn_angle_deg)
+    return math.sin(phi_rad), math.cos(phi_rad)
+
+
+def local_cubic(
+    points: Sequence[Point], tangent: Point, sigma: float, scale: float
+) -> tuple[float, float, float, float, float, float]:
+    """``(x1, x2, x3, y1, y2, y3)`` of the cubic Bézier ``points`` in the local frame at
+    ``B0`` along the unit ``tangent``, mirrored by ``sigma = ±1`` and divided by ``scale``
+    (docs/method.md §2): ``Q(u) − B0 = 3·d0·u + 3·(d1 − d0)·u² + (d2 − 2·d1 + d0)·u³``
+    (``d_i = B_{i+1} − B_i``), each vector ``v`` written as ``(T·v, σ·T×v) / scale``. With
+    ``tangent`` the direction of ``d0`` and ``scale = |d0|``, ``3·d0`` is ``(3, 0)`` exactly:
+    the curve leaves ``B0`` along ``B1 − B0`` as given."""
+    (x0, y0), (x1, y1), (x2, y2), (x3, y3) = points
+    tx, ty = tangent
+    # d1 − d0 and d2 − 2·d1 + d0 as differences of the legs (each leg formed once).
+    ex, ey = (x2 - x1) - (x1 - x0), (y2 - y1) - (y1 - y0)
+    fx, fy = (x3 - x2) - (x2 - x1) - ex, (y3 - y2) - (y2 - y1) - ey
+    return (
+        3.0, 3.0 * (tx * ex + ty * ey) / scale, (tx * fx + ty * fy) / scale,
+        0.0, 3.0 * sigma * (tx * ey - ty * ex) / scale, sigma * (tx * fy - ty * fx) / scale,
+    )  # fmt: skip
+
+
 @dataclass(frozen=True)
 class Spiral:
     """A cubic Bézier spiral in world coordinates (paper §1).
 
     Build it with :meth:`from_parameters` or :meth:`from_control_points`, which validate.
     ``turn_angle_rad`` is positive; the sign of ``end_curvature`` is the turning direction.
+    ``cos_turn`` and ``sin_turn`` are ``cos θ`` and ``sin θ`` to a few ulps of themselves
+    (:func:`turn_cos_sin`): everything derived from θ uses them. ``given`` holds the control
+    points of a spiral given by them, exactly as given: those points are then the curve
+    (its evaluation, its frame and its ends), and the other fields describe it.
     """
 
     start: Point
     start_tangent: Point
     turn_angle_rad: float
     end_curvature: float
+    cos_turn: float
+    sin_turn: float
+    given: tuple[Point, Point, Point, Point] | None = None
 
     @classmethod
     def from_parameters(
@@ -95,27 +144,16 @@ class Spiral:
             raise GeometryError(
                 "end_curvature", "must be non-zero (its sign is the turning direction)"
             )
+        cos_turn, sin_turn = turn_cos_sin(float(turn_angle_deg))
         spiral = cls(
             start=Point(sx, sy),
             start_tangent=Point(tx / norm, ty / norm),
-            turn_angle_rad=math.radians(turn_angle_deg),
+            turn_angle_rad=math.atan2(sin_turn, cos_turn),
             end_curvature=float(end_curvature),
+            cos_turn=cos_turn,
+            sin_turn=sin_turn,
         )
-        if not 1.0 / MAX_MAGNITUDE <= spiral.a <= MAX_MAGNITUDE:
-            raise GeometryError(
-                "end_curvature",
-                f"gives a spiral of size a = {spiral.a:.3g}, outside the supported "
-                f"[{1.0 / MAX_MAGNITUDE:g}, {MAX_MAGNITUDE:g}]",
-            )
-        if max(abs(sx), abs(sy)) > MAX_MAGNITUDE:
-            raise GeometryError("start", f"coordinates must not exceed {MAX_MAGNITUDE:g} in size")
-        if spiral.a < MIN_RELATIVE_SIZE * max(abs(sx), abs(sy)):
-            raise GeometryError(
-                "end_curvature",
-                f"gives a spiral of size a = {spiral.a:.3g}, too small to be placed at "
-                f"coordinates of {max(abs(sx), abs(sy)):.3g} in double precision "
-                f"(needs at least {MIN_RELATIVE_SIZE:g} of them)",
-            )
+        spiral._check_size("end_curvature", "start")
         return spiral
 
     @classmethod
@@ -123,7 +161,9 @@ class Spiral:
         """Four control points of the paper's form; θ and c are recovered from them.
 
         The form is ``B1 − B0 = B2 − B1 = a·T0`` and ``B3 − B2 = b·T1`` with
-        ``b / a = 1.2·cos θ``, θ the angle from ``T0`` to ``T1`` (``0 < |θ| < 90°``).
+        ``b / a = 1.2·cos θ``, θ the angle from ``T0`` to ``T1`` (``0 < |θ| < 90°``), each
+        to :data:`FORM_RTOL`. The spiral is the given points' cubic, not the nearest one of
+        the form: ``T0`` is the direction of ``B1 − B0``, ``T1`` that of ``B3 − B2``.
         """
         field = "control_points"
         if len(points) != 4:
@@ -141,32 +181,62 @@ class Spiral:
                 "B2 − B1 must equal B1 − B0 (the paper's form); they differ by "
                 f"{mismatch:.3g} of |B1 − B0| (allowed {FORM_RTOL:g})",
             )
-        t0 = (d0 + d1) / (2.0 * a_len)
-        t0 /= np.hypot(*t0)
-        t1 = d2 / b_len
-        theta = math.atan2(float(t0[0] * t1[1] - t0[1] * t1[0]), float(t0 @ t1))
+        t0, t1 = d0 / a_len, d2 / b_len
+        cross, dot = float(t0[0] * t1[1] - t0[1] * t1[0]), float(t0 @ t1)
+        theta = math.atan2(cross, dot)
         theta_deg = math.degrees(abs(theta))
-        if not 0.0 < theta_deg < 90.0:
+        if not (0.0 < theta_deg < 90.0 and dot > 0.0):
             raise GeometryError(
                 field,
                 "the angle from B1 − B0 to B3 − B2 must lie strictly between 0 and 90 degrees "
                 f"in size, got {theta_deg:.6g}",
             )
+        # cos θ and sin θ straight from the legs' directions: no angle in between.
+        norm = math.hypot(dot, cross)
+        cos_turn, sin_turn = dot / norm, abs(cross) / norm
         ratio = b_len / a_len
-        expected = 1.2 * math.cos(abs(theta))
+        expected = 1.2 * cos_turn
         if abs(ratio - expected) > FORM_RTOL * expected:
             raise GeometryError(
                 field,
                 f"|B3 − B2| / |B1 − B0| must equal 1.2·cos θ = {expected:.9g}, got {ratio:.9g} "
                 f"(off by {abs(ratio - expected) / expected:.3g} relative, allowed {FORM_RTOL:g})",
             )
-        curvature = 5.0 * math.tan(abs(theta)) / (9.0 * b_len)
-        return cls.from_parameters(
-            start=b[0].tolist(),
-            start_tangent=t0.tolist(),
-            turn_angle_deg=theta_deg,
-            end_curvature=math.copysign(curvature, theta),
+        rows = [Point(float(x), float(y)) for x, y in b]
+        spiral = cls(
+            start=rows[0],
+            start_tangent=Point(float(t0[0]), float(t0[1])),
+            turn_angle_rad=abs(theta),
+            end_curvature=math.copysign(5.0 * sin_turn / (9.0 * b_len * cos_turn), theta),
+            cos_turn=cos_turn,
+            sin_turn=sin_turn,
+            given=(rows[0], rows[1], rows[2], rows[3]),
         )
+        if max(abs(v) for v in b.flat) > MAX_MAGNITUDE:
+            raise GeometryError(field, f"coordinates must not exceed {MAX_MAGNITUDE:g} in size")
+        spiral._check_size(field, field)
+        return spiral
+
+    def _check_size(self, size_field: str, start_field: str) -> None:
+        """Refuse a spiral whose size or coordinates double precision cannot hold."""
+        sx, sy = self.start
+        if not 1.0 / MAX_MAGNITUDE <= self.a <= MAX_MAGNITUDE:
+            raise GeometryError(
+                size_field,
+                f"gives a spiral of size a = {self.a:.3g}, outside the supported "
+                f"[{1.0 / MAX_MAGNITUDE:g}, {MAX_MAGNITUDE:g}]",
+            )
+        if max(abs(sx), abs(sy)) > MAX_MAGNITUDE:
+            raise GeometryError(
+                start_field, f"coordinates must not exceed {MAX_MAGNITUDE:g} in size"
+            )
+        if self.a < MIN_RELATIVE_SIZE * max(abs(sx), abs(sy)):
+            raise GeometryError(
+                size_field,
+                f"gives a spiral of size a = {self.a:.3g}, too small to be placed at "
+                f"coordinates of {max(abs(sx), abs(sy)):.3g} in double precision "
+                f"(needs at least {MIN_RELATIVE_SIZE:g} of them)",
+            )
 
     # -- derived quantities ------------------------------------------------------------
 
@@ -182,26 +252,40 @@ class Spiral:
     @cached_property
     def a(self) -> float:
         """``|B1 − B0|``: also the scale of the canonical frame (``inf`` where a curvature
-        of denormal size makes the denominator vanish; :meth:`from_parameters` refuses it)."""
-        th = self.turn_angle_rad
-        denominator = 54.0 * abs(self.end_curvature) * math.cos(th)
-        return 25.0 * math.tan(th) / denominator if denominator > 0.0 else math.inf
+        of denormal size makes the denominator vanish; :meth:`from_parameters` refuses it).
+        From the parameters, ``25·sin θ / (54·|c|·cos²θ)``."""
+        if self.given is not None:
+            (x0, y0), (x1, y1) = self.given[0], self.given[1]
+            return math.hypot(x1 - x0, y1 - y0)
+        c, s = self.cos_turn, self.sin_turn
+        denominator = 54.0 * abs(self.end_curvature) * c * c
+        return 25.0 * s / denominator if denominator > 0.0 else math.inf
 
     @cached_property
     def b(self) -> float:
-        """``|B3 − B2|``."""
-        denominator = 9.0 * abs(self.end_curvature)
-        return 5.0 * math.tan(self.turn_angle_rad) / denominator if denominator > 0.0 else math.inf
+        """``|B3 − B2|``; from the parameters, ``5·sin θ / (9·|c|·cos θ)``."""
+        if self.given is not None:
+            (x2, y2), (x3, y3) = self.given[2], self.given[3]
+            return math.hypot(x3 - x2, y3 - y2)
+        denominator = 9.0 * abs(self.end_curvature) * self.cos_turn
+        return 5.0 * self.sin_turn / denominator if denominator > 0.0 else math.inf
 
     @cached_property
     def end_tangent(self) -> Point:
-        phi = self.turn_direction * self.turn_angle_rad
-        c, s = math.cos(phi), math.sin(phi)
+        """``T1``: ``T0`` turned by θ in the turning direction (given control points: the
+        direction of ``B3 − B2``)."""
+        if self.given is not None:
+            (x2, y2), (x3, y3) = self.given[2], self.given[3]
+            length = math.hypot(x3 - x2, y3 - y2)
+            return Point((x3 - x2) / length, (y3 - y2) / length)
+        c, s = self.cos_turn, self.turn_direction * self.sin_turn
         tx, ty = self.start_tangent
         return Point(c * tx - s * ty, s * tx + c * ty)
 
     @cached_property
     def _points(self) -> tuple[Point, Point, Point, Point]:
+        if self.given is not None:
+            return self.given
         # B1 = B0 + a·T0, B2 = B1 + a·T0, B3 = B2 + b·T1, in floats: a batch builds
         # thousands of spirals, and numpy would spend microseconds on each of these sums.
         (x0, y0), (tx, ty), (ux, uy) = self.start, self.start_tangent, self.end_tangent
@@ -238,15 +322,20 @@ class Spiral:
     @cached_property
     def frame(self) -> tuple[float, ...]:
         """What the kernels need of the spiral, in ``fit.batch.FRAME_FIELDS`` order: the
-        similarity from the canonical spiral (``B0``, ``T0``, ``a``, the turning direction),
-        the stored end point ``B3``, the chord, the coordinate scale and the canonical
-        spiral's coefficients ``X = 3u + k·u³``, ``Y = m·u³``."""
+        similarity from the local frame (``B0``, ``T0``, ``a``, the turning direction), the
+        stored end point ``B3``, the chord, the coordinate scale and the curve's coefficients
+        in the local frame: the canonical spiral's ``X = 3u + k·u³``, ``Y = m·u³``, or those
+        of the given control points' cubic (:func:`local_cubic`)."""
         (x0, y0), (tx, ty), (x3, y3) = self.start, self.start_tangent, self.end_point
-        c, s = math.cos(self.turn_angle_rad), math.sin(self.turn_angle_rad)
+        if self.given is None:
+            c, s = self.cos_turn, self.sin_turn
+            coefficients = (3.0, 0.0, 1.2 * c * c - 1.0, 0.0, 0.0, 1.2 * c * s)
+        else:
+            sigma = float(self.turn_direction)
+            coefficients = local_cubic(self.given, self.start_tangent, sigma, self.a)
         return (
             x0, y0, tx, ty, self.a, float(self.turn_direction), x3, y3, self.chord,
-            self.coordinate_scale, 3.0, 0.0, 1.2 * c * c - 1.0, 0.0, 0.0, 1.2 * c * s,
-            0.0, 0.0, float(PIECE_KINDS["fit"]),
+            self.coordinate_scale, *coefficients, 0.0, 0.0, float(PIECE_KINDS["fit"]),
         )  # fmt: skip
 
     # -- evaluation (Bernstein form) ---------------------------------------------------
@@ -271,9 +360,10 @@ class Spiral:
         return result
 
     def arclen(self, u0: float = 0.0, u1: float = 1.0) -> float:
-        """Arc length over ``[u0, u1]``: the canonical spiral's (adaptive Gauss–Legendre,
+        """Arc length over ``[u0, u1]``: the frame's piece's (adaptive Gauss–Legendre,
         docs/method.md §6) times the scale ``a``."""
-        return self.a * spiral_length(self.turn_angle_rad, u0, u1)
+        x1, x2, x3, y1, y2, y3 = self.frame[10:16]
+        return self.a * cubic_length(x1, x2, x3, y1, y2, y3, u0, u1)
 
     def line_deviations(
         self, u0: FloatArray, u1: FloatArray, start: FloatArray, end: FloatArray
