@@ -118,3 +118,13 @@ def test_answers_near_a_right_angle_end_where_the_spiral_ends(
     assert math.atan2(abs(cross), along @ t1) <= continuity.end_angle_bound
     deviation = oracle.measure(exact, segments, samples=20_000)
     assert deviation.max <= tolerance * (1 + 1e-9) + slack, deviation
+
+
+@pytest.mark.parametrize("size", [1e200, 1.7e308])
+def test_control_points_near_the_float_range_are_refused_not_overflowed(size: float) -> None:
+    # Differences of such coordinates overflow to inf (a RuntimeWarning, an error under
+    # the tests' warning filter) unless their size is refused first.
+    points = [[-size, 0.0], [0.0, 0.0], [size, 0.0], [size, size]]
+    with pytest.raises(GeometryError, match="must not exceed") as caught:
+        Spiral.from_control_points(points)
+    assert caught.value.field == "control_points"

@@ -169,6 +169,9 @@ class Spiral:
         if len(points) != 4:
             raise GeometryError(field, f"must be 4 points, got {len(points)}")
         b = np.array([_pair(f"{field}[{i}]", p) for i, p in enumerate(points)], dtype=np.float64)
+        # Before any difference: two coordinates near the float range overflow when subtracted.
+        if float(np.abs(b).max()) > MAX_MAGNITUDE:
+            raise GeometryError(field, f"coordinates must not exceed {MAX_MAGNITUDE:g} in size")
         d0, d1, d2 = b[1] - b[0], b[2] - b[1], b[3] - b[2]
         a_len = float(np.hypot(*d0))
         b_len = float(np.hypot(*d2))
@@ -212,8 +215,6 @@ class Spiral:
             sin_turn=sin_turn,
             given=(rows[0], rows[1], rows[2], rows[3]),
         )
-        if max(abs(v) for v in b.flat) > MAX_MAGNITUDE:
-            raise GeometryError(field, f"coordinates must not exceed {MAX_MAGNITUDE:g} in size")
         spiral._check_size(field, field)
         return spiral
 
