@@ -1,8 +1,11 @@
 # The two commands a newcomer needs: `make run` and `make test`. Everything installs itself
-# into .venv on first use (and again whenever a lock file changes).
+# into .venv on first use (and again whenever a lock file changes): `make run` only what the
+# service runs on and its kernels are built with (requirements/runtime.lock, build.lock);
+# `make test` and the other developer targets the whole dev lock on top.
 PYTHON ?= python3
 VENV   := .venv
 BIN    := $(VENV)/bin
+RUNTIME_STAMP := $(VENV)/.installed-runtime
 STAMP  := $(VENV)/.installed
 # The compiled geometry kernels (Cython): rebuilt in place whenever a .pyx or .pxd changes.
 KERNEL_SOURCES := $(shell find service -name '*.pyx' -o -name '*.pxd')
@@ -23,19 +26,26 @@ help:
 	@echo "make lock        re-resolve requirements/*.lock from pyproject.toml"
 	@echo "make kernels     rebuild the compiled kernels after editing a .pyx or .pxd"
 
-install: $(KERNELS)
+install: $(STAMP) $(KERNELS)
 
-$(STAMP): pyproject.toml requirements/dev.lock
+# The service and its build: runtime.lock, build.lock (Cython, setuptools), the package.
+# The editable install compiles the kernels in place itself (a build_ext before it was
+# compiled over again).
+$(RUNTIME_STAMP): pyproject.toml requirements/runtime.lock requirements/build.lock
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install -q --upgrade pip
-	$(BIN)/python -m pip install -q -r requirements/dev.lock
-	$(BIN)/python setup.py -q build_ext --inplace -j 2
+	$(BIN)/python -m pip install -q -r requirements/runtime.lock -r requirements/build.lock
 	$(BIN)/python -m pip install -q --no-deps --no-build-isolation -e .
+	touch $@
+
+# Everything the developer targets use, on top (dev.lock pins the runtime packages too).
+$(STAMP): $(RUNTIME_STAMP) requirements/dev.lock
+	$(BIN)/python -m pip install -q -r requirements/dev.lock
 	touch $@
 
 kernels: $(KERNELS)
 
-$(KERNELS): $(STAMP) setup.py $(KERNEL_SOURCES)
+$(KERNELS): $(RUNTIME_STAMP) setup.py $(KERNEL_SOURCES)
 	$(BIN)/python setup.py -q build_ext --inplace -j 2
 	touch $@
 
@@ -47,10 +57,10 @@ lint: $(STAMP)
 	$(BIN)/ruff format --check service tests bench scripts
 	PATH="$(CURDIR)/$(BIN):$$PATH" $(BIN)/cython-lint --max-line-length 100 $(KERNEL_SOURCES)
 
-typecheck: $(KERNELS)
+typecheck: $(STAMP) $(KERNELS)
 	$(BIN)/mypy
 
-pytest: $(KERNELS)
+pytest: $(STAMP) $(KERNELS)
 	$(BIN)/python -m pytest -n 2 --dist loadgroup
 
 # The contract's tools (Redocly CLI, openapi-typescript, TypeScript), pinned by
@@ -66,7 +76,7 @@ contract: $(STAMP) $(CONTRACT_STAMP)
 
 test: lint typecheck contract pytest
 
-bench: $(KERNELS)
+bench: $(STAMP) $(KERNELS)
 	$(BIN)/python bench/core.py
 	$(BIN)/python bench/fewest.py
 	$(BIN)/python bench/paths.py
@@ -76,13 +86,14 @@ bench: $(KERNELS)
 	$(BIN)/python bench/client.py
 	$(BIN)/python bench/cli.py
 
-openapi: $(KERNELS)
+openapi: $(STAMP) $(KERNELS)
 	$(BIN)/python -m arcspline.api.export openapi/openapi.json
 
 lock: $(STAMP)
 	$(BIN)/python -m pip install -q uv
-	$(BIN)/uv pip compile pyproject.toml -q --python-version 3.11 --no-header --annotation-style line -o requirements/runtime.lock
 	$(BIN)/uv pip compile pyproject.toml --extra dev -q --python-version 3.11 --no-header --annotation-style line -o requirements/dev.lock
+	# The runtime pins are the dev lock's own versions: the service runs what the tests ran.
+	$(BIN)/uv pip compile pyproject.toml -c requirements/dev.lock -q --python-version 3.11 --no-header --annotation-style line -o requirements/runtime.lock
 	$(BIN)/python -c "import tomllib; print(*tomllib.load(open('pyproject.toml', 'rb'))['build-system']['requires'], sep='\n')" \
 		| $(BIN)/uv pip compile - -q --python-version 3.11 --no-header --annotation-style line -o requirements/build.lock
 

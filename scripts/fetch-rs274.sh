@@ -8,7 +8,10 @@
 #
 # The cache is $RS274_CACHE_DIR, default .cache/rs274 in the repository (git-ignored). A
 # second run finds it complete and returns at once; concurrent runs (pytest-xdist workers)
-# serialise on a lock file. Exits non-zero with a message saying what is missing otherwise.
+# serialise on a lock file. Otherwise exits with a message saying what is missing: status 2
+# when this machine cannot fetch it (not Debian or Ubuntu, no such package in its sources, no
+# network or no root for `apt-get update`): the tests then skip, except in CI (CI=true); and
+# status 1 when what was fetched is broken or the cache cannot be written.
 set -euo pipefail
 
 repo="$(cd "$(dirname "$0")/.." && pwd)"
@@ -21,6 +24,13 @@ die() {
     exit 1
 }
 
+unavailable() {
+    echo "fetch-rs274: $*" >&2
+    exit 2
+}
+
+[[ "$(uname -s)" == Linux ]] || unavailable "rs274 is fetched as Debian packages: Linux only"
+command -v flock >/dev/null || unavailable "needs flock (util-linux)"
 mkdir -p "$cache" || die "cannot create the cache directory $cache"
 exec 9>"$cache/.lock"
 flock 9 || die "cannot lock $cache/.lock"
@@ -54,23 +64,23 @@ if [[ -f "$stamp" ]]; then
 fi
 
 command -v apt-get >/dev/null && command -v dpkg >/dev/null ||
-    die "needs apt-get and dpkg (a Debian or Ubuntu machine) to fetch linuxcnc-uspace"
+    unavailable "needs apt-get and dpkg (a Debian or Ubuntu machine) to fetch linuxcnc-uspace"
 
 if ! apt-cache show linuxcnc-uspace >/dev/null 2>&1; then
     echo "fetch-rs274: no package list knows linuxcnc-uspace; running apt-get update" >&2
-    apt-get update -qq >&2 || die "apt-get update failed (run it as root, or fetch as root once)"
+    apt-get update -qq >&2 || unavailable "apt-get update failed (run it as root, or fetch as root once)"
     apt-cache show linuxcnc-uspace >/dev/null 2>&1 ||
-        die "linuxcnc-uspace is not in this machine's package sources (Debian 12 has it)"
+        unavailable "linuxcnc-uspace is not in this machine's package sources (Debian 12 has it)"
 fi
 
 # The Boost.Python library the interpreter links (libboost-python1.74.0 on Debian 12).
 boost="$(apt-cache depends linuxcnc-uspace | sed -n 's/^ *Depends: \(libboost-python[0-9.]*\)$/\1/p' | head -n1)"
-[[ -n "$boost" ]] || die "cannot tell which libboost-python linuxcnc-uspace needs"
+[[ -n "$boost" ]] || unavailable "cannot tell which libboost-python linuxcnc-uspace needs"
 
 work="$(mktemp -d "$cache/fetch.XXXXXX")"
 trap 'rm -rf "$work"' EXIT
 (cd "$work" && apt-get download -q -o APT::Sandbox::User=root linuxcnc-uspace "$boost" >&2) ||
-    die "apt-get download linuxcnc-uspace $boost failed"
+    unavailable "apt-get download linuxcnc-uspace $boost failed (no network?)"
 
 # Shared libraries the interpreter needs that a minimal machine may lack: fetch those too.
 declare -A provider=([libpython3.11.so.1.0]=libpython3.11 [libtirpc.so.3]=libtirpc3)
@@ -80,8 +90,9 @@ missing="$(LD_LIBRARY_PATH="$(libpath "$work/root")" ldd "$work/root/usr/bin/rs2
     awk '/not found/ {print $1}')"
 for lib in $missing; do
     pkg="${provider[$lib]:-}"
-    [[ -n "$pkg" ]] || die "rs274 needs $lib, which no known package provides"
-    (cd "$work" && apt-get download -q -o APT::Sandbox::User=root "$pkg" >&2) || die "apt-get download $pkg failed"
+    [[ -n "$pkg" ]] || unavailable "rs274 needs $lib, which no known package provides"
+    (cd "$work" && apt-get download -q -o APT::Sandbox::User=root "$pkg" >&2) ||
+        unavailable "apt-get download $pkg failed (no network?)"
     dpkg -x "$work/$pkg"_*.deb "$work/root"
 done
 

@@ -4,19 +4,20 @@
   (``@pytest.mark.anyio``); session-scoped so that module-scoped async fixtures work.
 - ``paper_request``: the body of ``POST /v1/approximate`` for the paper's example
   (Walton & Meek 1996, Table 1: 12 arcs at this tolerance of 0.001).
-- ``rs274``: LinuxCNC's interpreter, fetched and cached by ``scripts/fetch-rs274.sh``.
+- ``rs274``: LinuxCNC's interpreter, fetched and cached by ``scripts/fetch-rs274.sh``
+  (skipped where it cannot be fetched, except in CI).
 """
 
 from __future__ import annotations
 
 import copy
-import subprocess
+import os
 from pathlib import Path
 from typing import Any
 
 import pytest
 
-from tests.support.rs274 import Rs274
+from tests.support.rs274 import Rs274, provide
 
 FETCH = Path(__file__).resolve().parents[1] / "scripts" / "fetch-rs274.sh"
 
@@ -41,10 +42,6 @@ def paper_request() -> dict[str, Any]:
 @pytest.fixture(scope="session")
 def rs274() -> Rs274:
     """The interpreter, fetched once per machine (the script caches it and takes a lock, so
-    the xdist workers of one run share a single download)."""
-    done = subprocess.run(
-        ["bash", str(FETCH)], capture_output=True, text=True, timeout=600, check=False
-    )
-    if done.returncode != 0:
-        pytest.fail(f"{FETCH.name} could not provide rs274:\n{done.stderr}", pytrace=False)
-    return Rs274(Path(done.stdout.strip().splitlines()[-1]))
+    the xdist workers of one run share a single download). Where the machine cannot fetch it
+    (not Debian or Ubuntu, no network) the G-code tests skip, saying why; in CI they fail."""
+    return provide(FETCH, ci=os.environ.get("CI", "").lower() == "true")

@@ -13,8 +13,11 @@ from __future__ import annotations
 import re
 import subprocess
 import tempfile
+from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
+
+import pytest
 
 #: LinuxCNC's strictest arc check: start and end radius may differ by at most 0.001 mm
 #: (unless by under 0.1 %); the inch setting's floor is 0.00004".
@@ -111,3 +114,28 @@ class Rs274:
                 check=False,
             )
         return Verdict(done.returncode, done.stdout, done.stderr)
+
+
+#: ``scripts/fetch-rs274.sh``'s exit status when this machine cannot fetch the interpreter
+#: (not Debian or Ubuntu, no such package, no network): as opposed to 1, something broken.
+UNAVAILABLE_STATUS = 2
+
+
+def provide(script: Path, *, ci: bool, env: Mapping[str, str] | None = None) -> Rs274:
+    """The interpreter that ``script`` fetches (or finds cached). Where this machine cannot
+    fetch it, the tests that need it skip, saying why, except in CI (``ci``), where that is
+    a failure as much as anything else that goes wrong."""
+    done = subprocess.run(
+        ["bash", str(script)],
+        capture_output=True,
+        text=True,
+        timeout=600,
+        check=False,
+        env=None if env is None else dict(env),
+    )
+    if done.returncode == 0:
+        return Rs274(Path(done.stdout.strip().splitlines()[-1]))
+    reason = done.stderr.strip().splitlines()[-1] if done.stderr.strip() else "no message"
+    if done.returncode == UNAVAILABLE_STATUS and not ci:
+        pytest.skip(f"rs274 cannot be fetched on this machine ({reason}); in CI this fails")
+    pytest.fail(f"{script.name} could not provide rs274:\n{done.stderr}", pytrace=False)
