@@ -1,5 +1,5 @@
-"""The Python client's throughput against a running service (issue 18): figures printed,
-never asserted.
+"""The Python client's throughput against a running service (issues 18 and 19): figures
+printed, never asserted.
 
 Starts ``python -m arcspline`` (a pool of 2 workers) and, in one run, sends the paper's
 spiral at 1e-5 (54 arcs each) with different seeds of variation (turn angle), measuring
@@ -10,7 +10,11 @@ segments/s end to end — requests made, sent, answered and parsed into objects 
 2. ``Client.approximate`` one spiral at a time (the same loop, typed results: the client's
    own cost per request);
 3. ``Client.approximate_batch`` over 10 000 spirals (chunks of 1000, 4 in flight);
-4. ``AsyncClient.approximate_batch`` over the same.
+4. ``AsyncClient.approximate_batch`` over the same;
+
+and, in the same run, the plain one-spiral-at-a-time implementation ``bench/plain.py``
+(``bench/service.py``'s ``plain_arcs_per_s``, the same spiral and tolerance): issue 19's
+target is a 10,000-spiral batch through the client, parsed, at ≥ 20× plain Python.
 
 Run with ``make bench`` or ``.venv/bin/python bench/client.py``.
 """
@@ -32,6 +36,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "service"))
 from serve import service
 
 from arcspline.client import ApproximateResponse, AsyncClient, Client
+from service import SPEEDUP_TARGET, plain_arcs_per_s
 
 TOLERANCE = 1e-5
 LOOP_SPIRALS = 1000
@@ -87,7 +92,9 @@ def _count(answer: object) -> int:
     return answer.stats.segment_count
 
 
-def rate(label: str, run: Any, url: str, requests: list[dict[str, Any]], base: float) -> float:
+def rate(
+    label: str, run: Any, url: str, requests: list[dict[str, Any]], base: float, plain: float
+) -> float:
     best = float("inf")
     segments = 0
     for _ in range(3):
@@ -95,21 +102,33 @@ def rate(label: str, run: Any, url: str, requests: list[dict[str, Any]], base: f
         segments = run(url, requests)
         best = min(best, time.perf_counter() - began)
     per_s = segments / best
-    ratio = f"{per_s / base:6.1f}× the loop" if base else ""
-    print(f"  {label:<44} {len(requests):>6} spirals {per_s:12,.0f} segments/s {ratio}")
+    ratio = f"{per_s / base:6.1f}× the loop" if base else " " * 15
+    print(
+        f"  {label:<44} {len(requests):>6} spirals {per_s:12,.0f} segments/s {ratio} "
+        f"{per_s / plain:6.1f}× plain Python"
+    )
     return per_s
 
 
 def main() -> None:
     with service(2) as running:
         url = running.url
+        plain = plain_arcs_per_s()
         print(f"segments/s end to end (paper spiral at {TOLERANCE:g}, pool of 2, parsed):")
+        print(f"  {'plain Python (bench/plain.py), no service':<51} {plain:19,.0f} segments/s")
         base = rate("plain httpx loop, one request each", plain_loop, url,
-                    spirals(LOOP_SPIRALS), 0.0)  # fmt: skip
+                    spirals(LOOP_SPIRALS), 0.0, plain)  # fmt: skip
         rate("Client.approximate, one request each", client_loop, url,
-             spirals(LOOP_SPIRALS), base)  # fmt: skip
-        rate("Client.approximate_batch", client_batch, url, spirals(BATCH_SPIRALS), base)
-        rate("AsyncClient.approximate_batch", async_batch, url, spirals(BATCH_SPIRALS), base)
+             spirals(LOOP_SPIRALS), base, plain)  # fmt: skip
+        batch = rate("Client.approximate_batch", client_batch, url, spirals(BATCH_SPIRALS),
+                     base, plain)  # fmt: skip
+        rate("AsyncClient.approximate_batch", async_batch, url, spirals(BATCH_SPIRALS), base,
+             plain)  # fmt: skip
+        verdict = "meets" if batch / plain >= SPEEDUP_TARGET else "misses"
+        print(
+            f"  Client.approximate_batch {batch / plain:.1f}× plain Python "
+            f"({verdict} ≥ {SPEEDUP_TARGET:g}×)"
+        )
 
 
 if __name__ == "__main__":

@@ -10,7 +10,7 @@ import socket
 import subprocess
 import sys
 import time
-from collections.abc import Iterator
+from collections.abc import Iterator, Mapping
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
@@ -58,11 +58,13 @@ def wait_ready(url: str, process: subprocess.Popen[bytes], timeout_s: float = 60
 
 
 @contextmanager
-def service(pool_size: int = 2) -> Iterator[Service]:
-    """The service with a pool of ``pool_size`` workers, until the block ends."""
+def service(pool_size: int = 2, settings: Mapping[str, str] | None = None) -> Iterator[Service]:
+    """The service with a pool of ``pool_size`` workers and ``settings`` (by field name),
+    until the block ends."""
     port = _free_port()
     env = {k: v for k, v in os.environ.items() if not k.startswith("ARCSPLINE_")}
     env["ARCSPLINE_POOL_SIZE"] = str(pool_size)
+    env.update({f"ARCSPLINE_{name.upper()}": value for name, value in (settings or {}).items()})
     env["ARCSPLINE_LOG_LEVEL"] = "warning"
     module = os.environ.get("ARCSPLINE_BENCH_MODULE", "arcspline")
     if path := os.environ.get("ARCSPLINE_BENCH_PYTHONPATH"):

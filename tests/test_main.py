@@ -42,3 +42,47 @@ def test_the_server_collects_less_often_and_serves_the_settings(
     assert (seen["app"], seen["factory"]) == ("arcspline.api.app:create_app", True)
     assert (seen["host"], seen["port"]) == ("127.0.0.2", 8765)
     assert signal.getsignal(signal.SIGTERM) is entry._exit_cleanly
+
+
+@pytest.mark.usefixtures("_restored")
+def test_the_server_bounds_its_connections_by_the_settings_and_the_file_limit(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    from uvicorn.protocols.http.httptools_impl import HttpToolsProtocol
+
+    from arcspline.serving import descriptors
+    from arcspline.serving.protocol import ConnectionLimits
+    from arcspline.settings import get_settings
+
+    for name in list(os.environ):
+        if name.upper().startswith("ARCSPLINE_"):
+            monkeypatch.delenv(name)
+    for name, value in {
+        "MAX_CONNECTIONS": "1000",
+        "MAX_HEADER_BYTES": "1000",
+        "HEADER_TIMEOUT_S": "2.5",
+        "BODY_TIMEOUT_S": "7",
+        "KEEP_ALIVE_TIMEOUT_S": "9",
+        "POOL_SIZE": "1",
+        "RETRY_AFTER_S": "4",
+    }.items():
+        monkeypatch.setenv(f"ARCSPLINE_{name}", value)
+    # An open-file limit of 500 leaves 500 - 64 - 8 × 1 for clients.
+    monkeypatch.setattr(descriptors, "raise_nofile_limit", lambda: 500)
+    seen: dict[str, Any] = {}
+    monkeypatch.setattr(uvicorn, "run", lambda app, **options: seen.update(options))
+    get_settings.cache_clear()
+    try:
+        entry.main([])
+    finally:
+        get_settings.cache_clear()
+    protocol = seen["http"]
+    assert issubclass(protocol, HttpToolsProtocol)
+    assert protocol.limits == ConnectionLimits(
+        max_connections=428,
+        max_header_bytes=1000,
+        header_timeout_s=2.5,
+        body_timeout_s=7.0,
+        retry_after_s=4,
+    )
+    assert seen["timeout_keep_alive"] == 9

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import logging
 import os
 
 import pytest
@@ -27,6 +28,9 @@ def test_defaults() -> None:
     assert settings.limits == DEFAULT_LIMITS
     assert settings.start_method == "forkserver"
     assert settings.access_log is False
+    assert (settings.max_connections, settings.max_header_bytes) == (4096, 64 * 1024)
+    assert (settings.header_timeout_s, settings.body_timeout_s) == (10.0, 60.0)
+    assert settings.keep_alive_timeout_s == 5
 
 
 def test_environment_variables_with_the_prefix_are_read(monkeypatch: pytest.MonkeyPatch) -> None:
@@ -61,9 +65,56 @@ def test_bad_values_are_refused(monkeypatch: pytest.MonkeyPatch, name: str, valu
         Settings()
 
 
-def test_a_misspelt_variable_is_refused(monkeypatch: pytest.MonkeyPatch) -> None:
+def test_a_misspelt_variable_is_named_in_one_warning_and_does_not_stop_the_service(
+    monkeypatch: pytest.MonkeyPatch, caplog: pytest.LogCaptureFixture
+) -> None:
     monkeypatch.setenv("ARCSPLINE_POOL_SIZ", "3")
-    with pytest.raises(ValidationError, match="ARCSPLINE_POOL_SIZ"):
+    monkeypatch.setenv("ARCSPLINE_NOT_A_SETTING", "1")
+    with caplog.at_level(logging.DEBUG, logger="arcspline.settings"):
+        settings = Settings()
+    assert settings.pool_size == available_cpus()
+    warnings = [r for r in caplog.records if r.levelno == logging.WARNING]
+    assert len(warnings) == 1
+    message = warnings[0].getMessage()
+    assert "ARCSPLINE_NOT_A_SETTING" in message
+    assert "ARCSPLINE_POOL_SIZ (did you mean ARCSPLINE_POOL_SIZE?)" in message
+
+
+#: What Kubernetes puts in every pod's environment for a Service named ``arcspline`` with a
+#: port 8000 named ``http`` (service links).
+SERVICE_LINKS = {
+    "ARCSPLINE_SERVICE_HOST": "10.0.0.1",
+    "ARCSPLINE_SERVICE_PORT": "8000",
+    "ARCSPLINE_SERVICE_PORT_HTTP": "8000",
+    "ARCSPLINE_PORT": "tcp://10.0.0.1:8000",
+    "ARCSPLINE_PORT_8000_TCP": "tcp://10.0.0.1:8000",
+    "ARCSPLINE_PORT_8000_TCP_PROTO": "tcp",
+    "ARCSPLINE_PORT_8000_TCP_PORT": "8000",
+    "ARCSPLINE_PORT_8000_TCP_ADDR": "10.0.0.1",
+}
+
+
+def test_kubernetes_service_links_are_ignored_quietly(
+    monkeypatch: pytest.MonkeyPatch, caplog: pytest.LogCaptureFixture
+) -> None:
+    for name, value in SERVICE_LINKS.items():
+        monkeypatch.setenv(name, value)
+    monkeypatch.setenv("ARCSPLINE_HOST", "0.0.0.0")
+    with caplog.at_level(logging.DEBUG, logger="arcspline.settings"):
+        settings = Settings()
+    assert (settings.host, settings.port) == ("0.0.0.0", 8000)
+    assert not [r for r in caplog.records if r.levelno >= logging.WARNING]
+    ignored = " ".join(r.getMessage() for r in caplog.records if r.levelno == logging.DEBUG)
+    for name in SERVICE_LINKS:
+        assert name in ignored
+
+
+def test_a_port_is_still_read_beside_service_links(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setenv("ARCSPLINE_SERVICE_HOST", "10.0.0.1")
+    monkeypatch.setenv("ARCSPLINE_PORT", "9001")
+    assert Settings().port == 9001
+    monkeypatch.setenv("ARCSPLINE_PORT", "http://10.0.0.1:8000")
+    with pytest.raises(ValidationError, match="port"):
         Settings()
 
 

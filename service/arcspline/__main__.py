@@ -2,7 +2,9 @@
 serve`` is the same :func:`serve`).
 
 One uvicorn process (the approximation itself runs in the worker pool) on uvloop and
-httptools, without an access log unless ``ARCSPLINE_ACCESS_LOG=true``. SIGTERM or SIGINT
+httptools, its connections bounded by :mod:`arcspline.serving.protocol` (header size and
+time, body time, a connection cap under the open-file limit, which is raised to the hard
+limit), without an access log unless ``ARCSPLINE_ACCESS_LOG=true``. SIGTERM or SIGINT
 stops accepting connections, lets in-flight requests finish (up to
 ``ARCSPLINE_DRAIN_TIMEOUT_S``), stops the workers and exits 0.
 """
@@ -71,9 +73,20 @@ def serve(host: str | None = None, port: int | None = None) -> None:
     ``arcspline serve`` both come here, so they serve alike."""
     import uvicorn
 
+    from arcspline.serving.descriptors import connection_cap, raise_nofile_limit
+    from arcspline.serving.protocol import ConnectionLimits, bounded_protocol
     from arcspline.settings import get_settings
 
     settings = get_settings()
+    limits = ConnectionLimits(
+        max_connections=connection_cap(
+            settings.max_connections, raise_nofile_limit(), settings.pool_size
+        ),
+        max_header_bytes=settings.max_header_bytes,
+        header_timeout_s=settings.header_timeout_s,
+        body_timeout_s=settings.body_timeout_s,
+        retry_after_s=settings.retry_after_s,
+    )
     # Uvicorn drains on SIGTERM, then raises the signal again under the handler it found at
     # start, so that the exit status says "terminated". A drained server has nothing to
     # report: with this handler it exits 0.
@@ -85,7 +98,8 @@ def serve(host: str | None = None, port: int | None = None) -> None:
         host=settings.host if host is None else host,
         port=settings.port if port is None else port,
         loop="uvloop",
-        http="httptools",
+        http=bounded_protocol(limits),
+        timeout_keep_alive=settings.keep_alive_timeout_s,
         lifespan="on",
         access_log=settings.access_log,
         log_level=settings.log_level,

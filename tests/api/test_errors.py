@@ -2,11 +2,16 @@
 
 from __future__ import annotations
 
+import json
 import pickle
 
+import httpx
 import pytest
 
+from arcspline.api.app import create_app
 from arcspline.api.errors import (
+    MAX_ERROR_TEXT,
+    MAX_ERRORS,
     clean_loc,
     core_field_loc,
     gcode_problem,
@@ -16,9 +21,13 @@ from arcspline.api.errors import (
     problem_kind,
     validation_problem,
 )
+from arcspline.api.schemas import ProblemResponse
 from arcspline.geometry import GeometryError
 from arcspline.outputs.gcode import GcodeError
+from arcspline.settings import Settings
 from arcspline.worker.pool import JobTimeoutError, PoolUnavailableError, QueueFullError
+
+from .conftest import TEST_SETTINGS, problem_of
 
 
 @pytest.mark.parametrize(
@@ -109,3 +118,103 @@ def test_plain_http_problems_use_about_blank() -> None:
     body = problem("http", "Not Found", status=404)
     assert (body["type"], body["title"]) == ("about:blank", "Not Found")
     assert problem_kind(body) == "not_found"
+
+
+def test_a_problem_lists_at_most_max_errors_and_says_how_many_more() -> None:
+    errors = [
+        {"loc": (f"field{i}",), "msg": "Extra inputs are not permitted", "type": "extra_forbidden"}
+        for i in range(MAX_ERRORS + 7)
+    ]
+    body = validation_problem(errors, ["body"])
+    assert [e["loc"] for e in body["errors"]] == [["body", f"field{i}"] for i in range(MAX_ERRORS)]
+    assert body["errors_omitted"] == 7
+    assert ProblemResponse.model_validate(body).errors_omitted == 7  # the contract, the client
+    assert body["detail"].startswith(f"{MAX_ERRORS + 7} invalid field(s)")
+    assert "errors_omitted" not in validation_problem(errors[:MAX_ERRORS], ["body"])
+
+
+def test_long_names_and_messages_are_cut() -> None:
+    name = "k" * 100_000
+    body = validation_problem([{"loc": (name,), "msg": "m" * 5_000, "type": "x"}], ["body"])
+    (error,) = body["errors"]
+    assert error["loc"][1].startswith("kkk")
+    assert len(error["loc"][1]) == MAX_ERROR_TEXT
+    assert len(error["msg"]) == MAX_ERROR_TEXT
+    assert len(body["detail"]) < 4 * MAX_ERROR_TEXT
+
+
+@pytest.mark.anyio
+async def test_two_megabytes_of_unknown_fields_answer_a_small_problem(
+    client: httpx.AsyncClient,
+) -> None:
+    # Each unknown field was one error: a 2 MB body answered 15 MB.
+    fields = {f"f{i}": 1 for i in range(170_000)}
+    raw = json.dumps(fields).encode()
+    assert len(raw) > 2_000_000
+    response = await client.post(
+        "/v1/approximate", content=raw, headers={"content-type": "application/json"}
+    )
+    problem = problem_of(response, 422)
+    assert len(response.content) < 16_384
+    assert len(problem["errors"]) == MAX_ERRORS
+    # 170,000 unknown fields, and the two required ones missing.
+    assert problem["errors_omitted"] == 170_002 - MAX_ERRORS
+
+
+@pytest.mark.anyio
+async def test_an_unexpected_error_answers_500_with_the_request_id() -> None:
+    app = create_app(Settings(**TEST_SETTINGS))
+
+    async def fail() -> None:
+        raise RuntimeError("a bug")
+
+    app.add_api_route("/v1/fail", fail, methods=["GET"])
+    transport = httpx.ASGITransport(app=app, raise_app_exceptions=False)
+    async with httpx.AsyncClient(transport=transport, base_url="http://test") as client:
+        response = await client.get("/v1/fail", headers={"X-Request-ID": "trace-500"})
+    problem = problem_of(response, 500)
+    assert problem["request_id"] == "trace-500"
+    assert response.headers["x-request-id"] == "trace-500"
+
+
+@pytest.mark.anyio
+@pytest.mark.parametrize("url", ["/v1/approximate/batch", "/v1/paths/batch"])
+async def test_a_batch_job_that_is_not_an_object_names_no_class(
+    client: httpx.AsyncClient, url: str
+) -> None:
+    response = await client.post(url, json={"jobs": [1, "x", [2]]})
+    assert response.status_code == 200, response.text
+    errors = [entry["error"]["errors"] for entry in response.json()["results"]]
+    assert [e["msg"] for job in errors for e in job] == ["Input should be an object"] * 3
+    assert "Request" not in response.text  # ApproximateRequest, PathRequest
+
+
+@pytest.mark.anyio
+async def test_a_client_gone_before_its_body_arrived_logs_no_error(
+    app: object, caplog: pytest.LogCaptureFixture
+) -> None:
+    # As uvicorn tells it: a first part of the body, then the connection is gone (or the
+    # server's body timeout treated it so).
+    messages = [
+        {"type": "http.request", "body": b'{"spiral": ', "more_body": True},
+        {"type": "http.disconnect"},
+    ]
+    sent: list[dict[str, object]] = []
+
+    async def receive() -> dict[str, object]:
+        return messages.pop(0) if messages else {"type": "http.disconnect"}
+
+    async def send(message: dict[str, object]) -> None:
+        sent.append(message)
+
+    scope = {
+        "type": "http", "asgi": {"version": "3.0"}, "http_version": "1.1", "method": "POST",
+        "scheme": "http", "path": "/v1/approximate", "raw_path": b"/v1/approximate",
+        "query_string": b"", "root_path": "", "server": ("testserver", 80),
+        "client": ("127.0.0.1", 1234),
+        "headers": [(b"content-type", b"application/json"), (b"content-length", b"100")],
+    }  # fmt: skip
+    with caplog.at_level("DEBUG"):
+        await app(scope, receive, send)  # type: ignore[operator]
+    assert not [r for r in caplog.records if r.levelname in ("ERROR", "CRITICAL")]
+    assert "unhandled" not in caplog.text

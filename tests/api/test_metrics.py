@@ -62,3 +62,34 @@ async def test_metrics_show_the_pool(client: httpx.AsyncClient) -> None:
     assert _get(samples, "arcspline_pool_queue_depth") == 0
     assert _get(samples, "arcspline_pool_queue_capacity") == 16
     assert ("arcspline_pool_worker_restarts_total", frozenset()) in samples
+
+
+async def test_metrics_show_the_process_and_the_runtime(client: httpx.AsyncClient) -> None:
+    samples = await _scrape(client)
+    names = {name for name, _ in samples}
+    # prometheus_client's process (Linux /proc), platform and garbage-collector collectors.
+    assert {"process_resident_memory_bytes", "process_open_fds", "process_cpu_seconds_total"} <= (
+        names
+    )
+    assert any(name == "python_info" for name in names)
+    assert _get(samples, "python_gc_collections_total", generation="0") >= 0
+    assert ("python_gc_collections_total", frozenset({("generation", "0")})) in samples
+
+
+async def test_metrics_count_preview_jobs(
+    client: httpx.AsyncClient, paper_request: dict[str, Any]
+) -> None:
+    bad = {**paper_request, "tolerance": 1e-13}  # below what can be reached: refused by the job
+    path = {"path": "M 0 0 L 10 0", "tolerance": 0.01}
+    before = await _scrape(client)
+    assert (await client.post("/v1/preview", json=paper_request)).status_code == 200
+    assert (await client.post("/v1/preview", json=bad)).status_code == 422
+    assert (await client.post("/v1/paths/preview", json=path)).status_code == 200
+    after = await _scrape(client)
+
+    def delta(name: str, **labels: str) -> float:
+        return _get(after, name, **labels) - _get(before, name, **labels)
+
+    assert delta("arcspline_jobs_total", endpoint="preview", outcome="ok") == 1
+    assert delta("arcspline_jobs_total", endpoint="preview", outcome="error") == 1
+    assert delta("arcspline_jobs_total", endpoint="paths_preview", outcome="ok") == 1

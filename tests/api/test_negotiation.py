@@ -3,15 +3,26 @@ the writers each answer needs, without a server."""
 
 from __future__ import annotations
 
+from typing import Any
+
+import httpx
 import pytest
 
 from arcspline.api.drawing_schemas import DxfRequest
 from arcspline.api.errors import ProblemError
-from arcspline.api.negotiation import filename, negotiate, writers_for
+from arcspline.api.negotiation import (
+    BATCH_MEDIA_TYPES,
+    filename,
+    media_type_for,
+    negotiate,
+    writers_for,
+)
 from arcspline.outputs import WRITERS
 from arcspline.outputs.dxf import DxfOptions
 from arcspline.outputs.gcode import GcodeOptions
 from arcspline.outputs.svg_document import SvgDocumentOptions
+
+from .conftest import locs, problem_of
 
 
 @pytest.mark.parametrize(
@@ -81,3 +92,51 @@ def test_filenames() -> None:
     assert filename("spiral", "gcode") == "spiral.ngc"
     assert filename("path", "dxf") == "path.dxf"
     assert filename("drawing", "svg") == "drawing.svg"
+
+
+@pytest.mark.parametrize(
+    ("accept", "media_type"),
+    [
+        (None, "application/json"),
+        ("*/*", "application/json"),
+        ("application/*", "application/json"),
+        ("application/json; charset=utf-8", "application/json"),
+        ("application/x-ndjson", "application/x-ndjson"),
+        ("application/json;q=0.5, application/x-ndjson", "application/x-ndjson"),
+        ("text/html, */*;q=0.1", "application/json"),
+    ],
+)
+def test_a_batch_answers_what_accept_names(accept: str | None, media_type: str) -> None:
+    assert media_type_for(accept, BATCH_MEDIA_TYPES) == media_type
+
+
+@pytest.mark.parametrize("accept", ["text/plain", "image/*", "application/json;q=0"])
+def test_a_batch_refuses_an_accept_it_cannot_answer(accept: str) -> None:
+    with pytest.raises(ProblemError) as info:
+        media_type_for(accept, BATCH_MEDIA_TYPES)
+    assert info.value.problem["status"] == 406
+    assert "application/x-ndjson" in info.value.problem["detail"]
+
+
+BATCHES = ["/v1/approximate/batch", "/v1/paths/batch"]
+
+
+@pytest.mark.anyio
+@pytest.mark.parametrize("url", BATCHES)
+async def test_a_batch_refuses_query_parameters_as_the_approximate_endpoints_do(
+    client: httpx.AsyncClient, paper_request: dict[str, Any], url: str
+) -> None:
+    response = await client.post(url + "?output=gcode&tolerence=1", json={"jobs": [{}]})
+    problem = problem_of(response, 422)
+    assert locs(problem) == [["query", "output"], ["query", "tolerence"]]
+
+
+@pytest.mark.anyio
+@pytest.mark.parametrize("url", BATCHES)
+async def test_a_batch_refuses_an_accept_it_cannot_answer_with_406(
+    client: httpx.AsyncClient, url: str
+) -> None:
+    response = await client.post(url, json={"jobs": [{}]}, headers={"Accept": "text/x-gcode"})
+    assert "text/x-gcode" in problem_of(response, 406)["detail"]
+    response = await client.post(url, json={"jobs": [{}]}, headers={"Accept": "application/*"})
+    assert response.status_code == 200, response.text

@@ -66,3 +66,46 @@ async def test_a_spiral_at_the_edge_of_double_precision_draws_or_is_refused(
         assert not re.search(r"nan|inf", response.text.split("<text")[0], re.IGNORECASE)
     else:
         assert locs(problem_of(response, 422))[0][:2] == ["body", "spiral"]
+
+
+PATH = {"path": "M 0 0 L 10 0", "tolerance": 0.01}
+
+
+@pytest.fixture(params=["/v1/preview", "/v1/paths/preview"])
+def preview(request: pytest.FixtureRequest, paper_request: dict[str, Any]) -> tuple[str, Any]:
+    """A preview endpoint and a request it draws."""
+    url: str = request.param
+    return url, paper_request if url == "/v1/preview" else PATH
+
+
+async def test_a_preview_refuses_query_parameters(
+    client: httpx.AsyncClient, preview: tuple[str, Any]
+) -> None:
+    url, body = preview
+    response = await client.post(url + "?scale=2", json=body)
+    assert locs(problem_of(response, 422)) == [["query", "scale"]]
+
+
+async def test_a_preview_refuses_an_accept_other_than_svg(
+    client: httpx.AsyncClient, preview: tuple[str, Any]
+) -> None:
+    url, body = preview
+    response = await client.post(url, json=body, headers={"Accept": "application/json"})
+    assert "image/svg+xml" in problem_of(response, 406)["detail"]
+    for accept in ("image/svg+xml", "image/*", "text/html, */*;q=0.8"):
+        response = await client.post(url, json=body, headers={"Accept": accept})
+        assert response.status_code == 200, (accept, response.text)
+        assert response.headers["content-type"].startswith("image/svg+xml")
+
+
+async def test_a_drawing_preview_refuses_an_accept_other_than_svg(
+    client: httpx.AsyncClient,
+) -> None:
+    svg = '<svg xmlns="http://www.w3.org/2000/svg"><path d="M 0 0 L 10 0"/></svg>'
+    body = {"document": svg, "format": "svg", "tolerance": 0.01}
+    response = await client.post(
+        "/v1/drawings/preview", json=body, headers={"Accept": "application/json"}
+    )
+    assert "image/svg+xml" in problem_of(response, 406)["detail"]
+    response = await client.post("/v1/drawings/preview", json=body)
+    assert response.status_code == 200, response.text

@@ -19,8 +19,12 @@ from tests.support.server import Server, running_server
 
 @pytest.fixture(scope="module")
 def busy_server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Server]:
-    """One worker and room for one request: a second at the same time gets 503."""
-    with running_server(tmp_path_factory.mktemp("busy"), pool_size=1, queue_capacity=1) as server:
+    """One worker and room for one request: a second at the same time gets 503. Every job
+    goes to the worker (``inline_max_segments=0``): a small one computed in the serving
+    process would be done before the next arrives, and never find the queue full."""
+    with running_server(
+        tmp_path_factory.mktemp("busy"), pool_size=1, queue_capacity=1, inline_max_segments=0
+    ) as server:
         yield server
 
 

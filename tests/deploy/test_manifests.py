@@ -142,10 +142,16 @@ def test_pool_size_matches_the_cpu_limit(container: dict[str, Any]) -> None:
 
 
 def test_environment_holds_only_known_settings(container: dict[str, Any]) -> None:
-    # The service refuses to start on an unknown ARCSPLINE_ variable.
+    # The service warns at start of an unknown ARCSPLINE_ variable (a typo, ignored).
     known = {"ARCSPLINE_" + name.upper() for name in Settings.model_fields}
     assert set(env_of(container)) <= known
     assert "command" not in container, "the image's CMD (one server process) stays in force"
+
+
+def test_no_service_links_in_the_environment(pod_spec: dict[str, Any]) -> None:
+    # A Service named arcspline would otherwise put ARCSPLINE_PORT=tcp://… and
+    # ARCSPLINE_SERVICE_HOST into the pod (the service ignores them, settings.py).
+    assert pod_spec["enableServiceLinks"] is False
 
 
 def test_restricted_security_context(pod_spec: dict[str, Any], container: dict[str, Any]) -> None:

@@ -245,3 +245,78 @@ async def test_a_coalesced_task_that_fails_fails_each_of_its_jobs() -> None:
         assert isinstance(single, Encoded)
     finally:
         await pool.drain(10)
+
+
+def _sleep_each(seconds: list[float], _arg: None) -> list[float]:
+    """A coalescable task (``fn(items, arg)``) that takes the time its items say."""
+    for s in seconds:
+        time.sleep(s)
+    return seconds
+
+
+@pool_test
+async def test_a_waiting_single_task_takes_the_next_worker_before_waiting_batch_chunks() -> None:
+    pool = WorkerPool(1, 8)
+    await pool.start()
+    try:
+        done: list[str] = []
+
+        def note(name: str) -> Any:
+            return lambda _task: done.append(name)
+
+        blocker = asyncio.create_task(pool.run(time.sleep, 0.3, time_limit_s=10))
+        blocker.add_done_callback(note("blocker"))
+        await _eventually(lambda: pool.running == 1)
+        chunks = [(time.sleep, (0.2,)), (time.sleep, (0.2,))]
+        batch = asyncio.create_task(pool.run_many(chunks, time_limit_s=10))
+        batch.add_done_callback(note("batch"))
+        await _eventually(lambda: pool.queue_depth == 2)
+        single = asyncio.create_task(pool.run(os.getpid, time_limit_s=10))
+        single.add_done_callback(note("single"))
+        await asyncio.gather(blocker, batch, single)
+        # The single arrived last, after both chunks had queued, and ran first.
+        assert done == ["blocker", "single", "batch"]
+        assert pool.free_slots == 1
+    finally:
+        await pool.drain(10)
+
+
+@pool_test
+async def test_a_coalesced_task_runs_on_while_one_of_its_jobs_is_still_awaited() -> None:
+    pool = WorkerPool(1, 8)
+    await pool.start()
+    try:
+        coalescer = Coalescer(pool, _sleep_each, None, time_limit_s=10, max_items=8)
+        blocker = asyncio.create_task(pool.run(time.sleep, 0.2, time_limit_s=10))
+        await _eventually(lambda: pool.running == 1)
+        gone, kept = (asyncio.create_task(coalescer.run(0.4)) for _ in range(2))
+        await _eventually(lambda: coalescer.tasks == 1)  # both in one task, now running
+        gone.cancel()
+        assert await kept == 0.4
+        await blocker
+        assert gone.cancelled()
+        assert pool.restarts == 0
+    finally:
+        await pool.drain(10)
+
+
+@pool_test
+async def test_a_coalesced_task_no_job_awaits_any_more_is_stopped() -> None:
+    pool = WorkerPool(1, 8)
+    await pool.start()
+    try:
+        coalescer = Coalescer(pool, _sleep_each, None, time_limit_s=30, max_items=8)
+        jobs = [asyncio.create_task(coalescer.run(5.0)) for _ in range(2)]
+        await _eventually(lambda: pool.running == 2)  # one task of both jobs
+        (pid,) = pool.pids
+        for job in jobs:
+            job.cancel()
+        # Its worker killed and replaced: the work no one awaits does not run on (and the
+        # task ending by itself after 10 s would leave the count at 0).
+        await _eventually(lambda: pool.restarts == 1 and pool.running == 0)
+        await _eventually(lambda: pool.ready)
+        assert pool.pids != [pid]
+        assert await coalescer.run(0.0) == 0.0  # and the coalescer goes on
+        assert coalescer.tasks == 2
+    finally:
+        await pool.drain(10)

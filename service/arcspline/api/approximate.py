@@ -10,10 +10,11 @@ from starlette.responses import Response
 
 from arcspline.worker.jobs import Encoded, Job, approximate_chunk, render
 
-from .batch import json_only, run_batch
-from .contract import OUTPUT_PARAMETER, answers
+from .batch import answer, json_only, validate
+from .contract import OUTPUT_PARAMETER, answers, batch_answers
 from .errors import Loc, ProblemError, RawJSONResponse, problem_responses
-from .negotiation import answer_document, output_of
+from .fast_path import run_inline
+from .negotiation import BATCH_MEDIA_TYPES, answer_document, fixed_answer, output_of
 from .routing import LeanRoute
 from .runtime import runtime_of
 from .schemas import ApproximateRequest, ApproximateResponse, BatchRequest, BatchResponse
@@ -22,6 +23,8 @@ from .translate import curve_outputs, job_problem, to_job
 router = APIRouter(tags=["approximation"], route_class=LeanRoute)
 
 _JOB_ADAPTER: TypeAdapter[ApproximateRequest] = TypeAdapter(ApproximateRequest)
+#: Jobs per worker task of a streamed batch: small, so the first lines go out early.
+STREAM_CHUNK_JOBS = 8
 
 
 @router.post(
@@ -46,8 +49,11 @@ async def approximate(body: ApproximateRequest, request: Request) -> Response:
             request, render, job, runtime.settings.limits, endpoint="approximate",
             stem="spiral", output=output, problem_of=lambda error: job_problem(error, ["body"]),
         )  # fmt: skip
-    # Jobs that arrive while every worker is busy share a worker task (see Coalescer).
-    result = await runtime.singles().run(job)
+    singles = runtime.singles()
+    result = run_inline(job, runtime.settings, singles.pool)
+    if result is None:
+        # Jobs that arrive while every worker is busy share a worker task (see Coalescer).
+        result = await singles.run(job)
     if isinstance(result, Encoded):
         runtime.metrics.job_ok("approximate", result.arc_count, result.line_count)
         return RawJSONResponse(result.body)
@@ -61,16 +67,18 @@ async def approximate(body: ApproximateRequest, request: Request) -> Response:
     summary="Approximate many spirals",
     response_model=BatchResponse,
     responses={
-        200: {"description": "One result per job, in order"},
-        **problem_responses(400, 413, 422, 503),
+        **batch_answers("One result per job, in order", "BatchOkResponse"),
+        **problem_responses(400, 406, 413, 422, 503),
     },
 )
-async def approximate_batch(body: BatchRequest, request: Request) -> RawJSONResponse:
+async def approximate_batch(body: BatchRequest, request: Request) -> Response:
     """One result per job, in order: ``ok`` with the body of /v1/approximate, or ``error``.
 
     Each job is validated and computed on its own, so a bad job becomes an error entry and
-    spoils nothing else. The jobs go to the workers in a few large tasks.
+    spoils nothing else. The jobs go to the workers in a few large tasks, within the batch's
+    work budget — or, streamed (NDJSON), in small ones, each line sent as its task finishes.
     """
+    fixed_answer(request, BATCH_MEDIA_TYPES)
     runtime = runtime_of(request)
     settings = runtime.settings
 
@@ -79,8 +87,8 @@ async def approximate_batch(body: BatchRequest, request: Request) -> RawJSONResp
         json_only(job.output, prefix)
         return to_job(job, prefix)
 
-    body_bytes = await run_batch(
-        runtime, body.jobs, make_job, approximate_chunk, settings.limits,
-        settings.batch_chunk_min_jobs, "batch", "spiral",
-    )  # fmt: skip
-    return RawJSONResponse(body_bytes)
+    batch = validate(
+        runtime, body.jobs, make_job, approximate_chunk, settings.limits, "batch", "spiral"
+    )
+    accept = request.headers.get("accept")
+    return await answer(batch, accept, settings.batch_chunk_min_jobs, STREAM_CHUNK_JOBS)

@@ -12,7 +12,7 @@ from importlib.metadata import version
 from typing import Any
 
 from .examples import OPERATIONS
-from .schemas import OUTPUT_FORMATS, OUTPUT_MEDIA_TYPES
+from .schemas import NDJSON_MEDIA_TYPE, OUTPUT_FORMATS, OUTPUT_MEDIA_TYPES
 
 #: ``info.version``: the package's version (the contract is versioned with the code).
 VERSION = version("arcspline")
@@ -112,6 +112,24 @@ def answers(description: str) -> dict[int | str, dict[str, Any]]:
             "description": description,
             "headers": {"Content-Disposition": header("Content-Disposition")},
             "content": {OUTPUT_MEDIA_TYPES["json"]: {}, **documents},
+        }
+    }
+
+
+def batch_answers(description: str, ok_entry: str) -> dict[int | str, dict[str, Any]]:
+    """The 200 of a batch endpoint: JSON (the route's response model), or NDJSON when
+    ``Accept`` asks for it — each line one entry of ``results`` (``ok_entry``: the schema
+    of an ``ok`` entry), in the order of the jobs (docs/http-api.md, "Batches")."""
+    ok, error = f"#/components/schemas/{ok_entry}", "#/components/schemas/BatchErrorResponse"
+    line = {
+        "oneOf": [{"$ref": ok}, {"$ref": error}],
+        "discriminator": {"propertyName": "status", "mapping": {"ok": ok, "error": error}},
+    }
+    return {
+        200: {
+            "description": f"{description}: one JSON document, or with `Accept: "
+            f"{NDJSON_MEDIA_TYPE}` one line per job, sent as the jobs finish",
+            "content": {OUTPUT_MEDIA_TYPES["json"]: {}, NDJSON_MEDIA_TYPE: {"schema": line}},
         }
     }
 

@@ -15,16 +15,17 @@ from pydantic import TypeAdapter
 from starlette.responses import Response
 
 from arcspline.drawings.model import DocumentLimits
+from arcspline.outputs.svg import MEDIA_TYPE as SVG_MEDIA_TYPE
 from arcspline.worker.drawing_jobs import DrawingJob, approximate_drawing_one, render_drawing
-from arcspline.worker.jobs import Document, Encoded, Output
+from arcspline.worker.jobs import Encoded, Output
 
 from .contract import answers
 from .drawing_outputs import DOCUMENT_MEDIA_TYPES, document_outputs, preview_output
 from .drawing_query import DOCUMENT_BODY, from_query
 from .drawing_schemas import DrawingRequest, DrawingResponse
 from .errors import ProblemError, RawJSONResponse, problem, problem_responses
-from .negotiation import answer_document, negotiate, query_output
-from .preview import SVGResponse, svg_responses
+from .negotiation import answer_document, media_type_for, negotiate, query_output
+from .preview import SVGResponse, draw, svg_responses
 from .routing import LeanRoute, is_json, json_body, read_body
 from .runtime import runtime_of
 from .translate import drawing_problem
@@ -136,12 +137,10 @@ async def preview_drawing(body: DrawingRequest, request: Request) -> SVGResponse
     """The toolpaths numbered in cutting order, rapids dashed, corners marked, a scale bar
     in the drawing's units, and each toolpath's deviation magnified (``output`` and
     ``gcode`` ignored)."""
-    runtime = runtime_of(request)
-    settings = runtime.settings
+    # (Its query holds a raw document's options, checked with them.)
+    media_type_for(request.headers.get("accept"), (SVG_MEDIA_TYPE,))
     job = _job(body, request, (preview_output(body),))
-    result = await runtime.running_pool().run(
-        render_drawing, job, settings.drawing_limits, time_limit_s=settings.job_time_limit_s
-    )
-    if not isinstance(result, Document):
-        raise ProblemError(drawing_problem(result, ["body"]))
-    return SVGResponse(result.body)
+    return await draw(
+        request, render_drawing, job, runtime_of(request).settings.drawing_limits,
+        endpoint="drawings_preview", problem_of=lambda error: drawing_problem(error, ["body"]),
+    )  # fmt: skip

@@ -19,6 +19,7 @@ from asgi_correlation_id import correlation_id
 from fastapi import FastAPI, Request
 from fastapi.exceptions import RequestValidationError
 from starlette.exceptions import HTTPException
+from starlette.requests import ClientDisconnect
 from starlette.responses import JSONResponse, Response
 
 from arcspline.geometry import GeometryError
@@ -33,13 +34,18 @@ _UNION_TAGS = frozenset((*SPIRAL_TAGS, *PATH_TAGS))
 log = logging.getLogger(__name__)
 
 PROBLEM_MEDIA_TYPE = "application/problem+json"
+REQUEST_ID_HEADER = "X-Request-ID"
 TYPE_PREFIX = "urn:arcspline:problem:"
 
 #: kind -> (status, title). Plain HTTP errors (404, 405, ...) use ``about:blank``.
 KINDS: dict[str, tuple[int, str]] = {
     "malformed_json": (400, "Malformed JSON"),
+    "malformed_http": (400, "Malformed HTTP request"),
+    "request_timeout": (408, "Request timeout"),
+    "headers_too_large": (431, "Request header fields too large"),
     "body_too_large": (413, "Request body too large"),
     "too_many_jobs": (413, "Too many jobs"),
+    "work_too_large": (413, "Too much work for one batch"),
     "validation": (422, "Invalid request"),
     "invalid_input": (422, "Invalid curve"),
     "tolerance_floor": (422, "Tolerance below what can be reached"),
@@ -51,8 +57,10 @@ KINDS: dict[str, tuple[int, str]] = {
     "not_acceptable": (406, "Not acceptable"),
     "internal": (500, "Internal server error"),
     "queue_full": (503, "Server busy"),
+    "too_many_connections": (503, "Too many connections"),
     "pool_unavailable": (503, "Workers unavailable"),
     "not_ready": (503, "Not ready"),
+    "shutting_down": (503, "Shutting down"),
     "time_limit": (504, "Time limit exceeded"),
 }
 HTTP_KINDS = {404: "not_found", 405: "method_not_allowed", 413: "body_too_large"}
@@ -133,7 +141,7 @@ def problem_response(
 _RESPONSE_DESCRIPTIONS = {
     400: "Malformed JSON",
     406: "The Accept header names no output the endpoint gives",
-    413: "Request body too large, or too many jobs",
+    413: "Request body too large, too many jobs, or too much work for one batch",
     415: "The body's media type is not one the endpoint reads",
     422: "Invalid request: the errors name each field",
     503: "Busy (queue full; see Retry-After) or workers unavailable",
@@ -184,15 +192,43 @@ def dotted(loc: Sequence[str | int]) -> str:
     return ".".join(str(part) for part in loc)
 
 
+#: Most errors a problem lists, and the longest name or message in each
+#: (docs/errors.md#limits-of-a-problem): 2 MB of unknown fields answered 15 MB of errors.
+MAX_ERRORS = 50
+MAX_ERROR_TEXT = 200
+
+
+def _cut(text: str) -> str:
+    return text if len(text) <= MAX_ERROR_TEXT else text[: MAX_ERROR_TEXT - 1] + "…"
+
+
+#: pydantic's messages that name a class of the code (a batch's jobs are validated from
+#: Python objects: "... instance of ApproximateRequest"), said as JSON mode says them.
+_PLAIN_MESSAGES = {"model_type": "Input should be an object"}
+
+
+def _message(error: Mapping[str, Any]) -> str:
+    return _cut(_PLAIN_MESSAGES.get(str(error["type"])) or str(error["msg"]))
+
+
 def validation_problem(errors: Sequence[Mapping[str, Any]], prefix: Loc) -> dict[str, Any]:
-    """422 for pydantic errors; ``prefix`` is prepended to each path."""
+    """422 for pydantic errors; ``prefix`` is prepended to each path. The first
+    :data:`MAX_ERRORS` are listed (``errors_omitted`` counts the rest), each name in a path
+    and each message cut to :data:`MAX_ERROR_TEXT` characters."""
     items = [
-        {"loc": [*prefix, *clean_loc(e["loc"])], "msg": str(e["msg"]), "type": str(e["type"])}
-        for e in errors
+        {
+            "loc": [_cut(p) if isinstance(p, str) else p for p in [*prefix, *clean_loc(e["loc"])]],
+            "msg": _message(e),
+            "type": str(e["type"]),
+        }
+        for e in errors[:MAX_ERRORS]
     ]
     shown = "; ".join(f"{dotted(i['loc'])}: {i['msg']}" for i in items[:3])
-    more = f" (and {len(items) - 3} more)" if len(items) > 3 else ""
-    return problem("validation", f"{len(items)} invalid field(s): {shown}{more}", errors=items)
+    more = f" (and {len(errors) - 3} more)" if len(errors) > 3 else ""
+    body = problem("validation", f"{len(errors)} invalid field(s): {shown}{more}", errors=items)
+    if len(errors) > MAX_ERRORS:
+        body["errors_omitted"] = len(errors) - MAX_ERRORS
+    return body
 
 
 #: What the core and the writers call the whole curve when they refuse all of it (a result
@@ -270,10 +306,20 @@ async def _on_pool_error(request: Request, exc: Exception) -> Response:
     return problem_response(body, request, headers=headers)
 
 
+async def _on_client_disconnect(request: Request, exc: Exception) -> Response:
+    # The client left while its body was arriving (or timed out sending it): no one reads
+    # this answer (the server drops it), and nothing went wrong here worth a traceback.
+    log.debug("the client disconnected before its body was read")
+    return problem_response(problem("http", "client closed request", status=400), request)
+
+
 async def _on_unexpected(request: Request, exc: Exception) -> Response:
     log.error("unhandled error", exc_info=exc)
     body = problem("internal", "an unexpected error occurred; it has been logged")
-    return problem_response(body, request)
+    # Starlette answers this one outside every middleware: the request id's too.
+    request_id = body.get("request_id")
+    headers = {REQUEST_ID_HEADER: request_id} if request_id else None
+    return problem_response(body, request, headers=headers)
 
 
 def install_error_handlers(app: FastAPI) -> None:
@@ -282,4 +328,5 @@ def install_error_handlers(app: FastAPI) -> None:
     app.add_exception_handler(HTTPException, _on_http_error)
     app.add_exception_handler(ProblemError, _on_problem)
     app.add_exception_handler(PoolError, _on_pool_error)
+    app.add_exception_handler(ClientDisconnect, _on_client_disconnect)
     app.add_exception_handler(Exception, _on_unexpected)

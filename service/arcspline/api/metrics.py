@@ -1,4 +1,5 @@
-"""Prometheus metrics: requests and latency by route, jobs, arcs produced, the pool, errors.
+"""Prometheus metrics: requests and latency by route, jobs, arcs produced, the pool, errors,
+and the serving process (memory, CPU, open files, garbage collections).
 
 Each app has its own registry (so several apps can live in one test process); the pool's
 gauges are read when scraped, not pushed.
@@ -11,7 +12,15 @@ from collections.abc import Callable, Iterator
 from typing import Any
 
 from fastapi import APIRouter, Request
-from prometheus_client import CollectorRegistry, Counter, Histogram, disable_created_metrics
+from prometheus_client import (
+    CollectorRegistry,
+    Counter,
+    GCCollector,
+    Histogram,
+    PlatformCollector,
+    ProcessCollector,
+    disable_created_metrics,
+)
 from prometheus_client.exposition import choose_encoder
 from prometheus_client.metrics_core import CounterMetricFamily, GaugeMetricFamily, Metric
 from prometheus_client.registry import Collector
@@ -98,6 +107,11 @@ class Metrics:
         self._arcs = self.segments.labels("arc")
         self._lines = self.segments.labels("line")
         self.registry.register(PoolCollector(pool))
+        # What prometheus_client puts on its default registry (memory, CPU, open files,
+        # the Python version, garbage collections): this registry is the app's own.
+        ProcessCollector(registry=self.registry)
+        PlatformCollector(registry=self.registry)
+        GCCollector(registry=self.registry)
         # The labelled children, found once: labels() validates, builds a key and takes a
         # lock on every call, a few microseconds per request on the hot path.
         self._children: dict[tuple[Any, ...], Any] = {}

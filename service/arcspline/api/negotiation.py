@@ -3,12 +3,14 @@ an SVG) — the writers that answer needs, and the document's response.
 
 The three approximate endpoints (spiral, path, drawing) share all of it: the body's
 ``output``, else the ``output`` query parameter, else the best output the ``Accept`` header
-names, else JSON; 406 when the header names only media types we cannot give.
+names, else JSON; 406 when the header names only media types we cannot give. The endpoints
+that answer one kind of thing (a batch, a preview) check their query and ``Accept`` alike
+(:func:`fixed_answer`).
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Sequence
 from typing import Any, TypeVar
 
 from fastapi import Request
@@ -25,7 +27,7 @@ from arcspline.worker.jobs import Document, Output
 from .drawing_schemas import DxfRequest
 from .errors import ProblemError, problem
 from .runtime import runtime_of
-from .schemas import OUTPUT_MEDIA_TYPES, OutputFormat
+from .schemas import NDJSON_MEDIA_TYPE, OUTPUT_MEDIA_TYPES, OutputFormat
 
 JobT = TypeVar("JobT")
 
@@ -108,6 +110,43 @@ def negotiate(chosen: OutputFormat | None, accept: str | None) -> OutputFormat:
     offered = ", ".join(OUTPUT_MEDIA_TYPES.values())
     detail = f"the Accept header ({accept}) names none of the outputs: {offered}"
     raise ProblemError(problem("not_acceptable", detail))
+
+
+#: What a batch answers: one JSON document, or NDJSON (a line per job) when Accept asks.
+BATCH_MEDIA_TYPES = ("application/json", NDJSON_MEDIA_TYPE)
+
+
+def media_type_for(accept: str | None, offered: Sequence[str]) -> str:
+    """The one of ``offered`` that ``accept`` ranks best (a range such as ``image/*`` or
+    ``*/*`` takes the first it covers); the first when there is no ``Accept``; a 406 when
+    it names none."""
+    if not accept:
+        return offered[0]
+    for media in _ranked(accept):
+        if media in offered:
+            return media
+        if media.endswith("/*"):
+            covered = [o for o in offered if media == "*/*" or o.startswith(media[:-1])]
+            if covered:
+                return covered[0]
+    detail = f"the Accept header ({accept}) names none of the answers: {', '.join(offered)}"
+    raise ProblemError(problem("not_acceptable", detail))
+
+
+def refuse_query(request: Request) -> None:
+    """A 422 naming each query parameter: the request's options are all in its body."""
+    if request.scope.get("query_string"):
+        errors = unknown_parameters(request.query_params)
+        if errors:
+            raise RequestValidationError(errors)
+
+
+def fixed_answer(request: Request, offered: Sequence[str]) -> str:
+    """For an endpoint that takes no query parameters and answers one of ``offered`` (a
+    batch, a preview), as the approximate endpoints check theirs: a 422 for any query
+    parameter, a 406 for an ``Accept`` it cannot satisfy; else the media type to answer."""
+    refuse_query(request)
+    return media_type_for(request.headers.get("accept"), offered)
 
 
 def output_of(field: OutputFormat | None, request: Request) -> OutputFormat:

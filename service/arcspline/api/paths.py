@@ -9,8 +9,8 @@ from fastapi import APIRouter, Request
 from pydantic import TypeAdapter
 from starlette.responses import Response
 
+from arcspline.outputs.svg import MEDIA_TYPE as SVG_MEDIA_TYPE
 from arcspline.worker.jobs import (
-    Document,
     Encoded,
     PathJob,
     approximate_path_chunk,
@@ -18,12 +18,12 @@ from arcspline.worker.jobs import (
     render,
 )
 
-from .batch import json_only, run_batch
-from .contract import OUTPUT_PARAMETER, answers
+from .batch import answer, json_only, validate
+from .contract import OUTPUT_PARAMETER, answers, batch_answers
 from .errors import Loc, ProblemError, RawJSONResponse, problem_responses
-from .negotiation import answer_document, output_of
+from .negotiation import BATCH_MEDIA_TYPES, answer_document, fixed_answer, output_of
 from .path_schemas import PathBatchRequest, PathBatchResponse, PathRequest, PathResponse
-from .preview import SVGResponse, svg_responses
+from .preview import SVGResponse, draw, svg_responses
 from .routing import LeanRoute
 from .runtime import runtime_of
 from .translate import curve_outputs, job_problem, to_path_job
@@ -74,13 +74,14 @@ async def approximate_path(body: PathRequest, request: Request) -> Response:
     summary="Approximate many paths",
     response_model=PathBatchResponse,
     responses={
-        200: {"description": "One result per job, in order"},
-        **problem_responses(400, 413, 422, 503),
+        **batch_answers("One result per job, in order", "PathBatchOkResponse"),
+        **problem_responses(400, 406, 413, 422, 503),
     },
 )
-async def approximate_paths_batch(body: PathBatchRequest, request: Request) -> RawJSONResponse:
+async def approximate_paths_batch(body: PathBatchRequest, request: Request) -> Response:
     """One result per job, in order: ``ok`` with the body of /v1/paths/approximate, or
     ``error``; a bad job spoils nothing else."""
+    fixed_answer(request, BATCH_MEDIA_TYPES)
     runtime = runtime_of(request)
     settings = runtime.settings
 
@@ -89,12 +90,13 @@ async def approximate_paths_batch(body: PathBatchRequest, request: Request) -> R
         json_only(job.output, prefix)
         return to_path_job(job, prefix, settings.path_max_input_segments)
 
-    # A path is one compiled loop already: each chunk a job, as the pool allows.
-    body_bytes = await run_batch(
-        runtime, body.jobs, make_job, approximate_path_chunk, settings.path_limits, 1,
+    batch = validate(
+        runtime, body.jobs, make_job, approximate_path_chunk, settings.path_limits,
         "paths_batch", "path",
     )  # fmt: skip
-    return RawJSONResponse(body_bytes)
+    # A path is one compiled loop already: each chunk a job, as the pool allows (streamed:
+    # each path alone).
+    return await answer(batch, request.headers.get("accept"), 1, 1)
 
 
 @router.post(
@@ -107,12 +109,10 @@ async def approximate_paths_batch(body: PathBatchRequest, request: Request) -> R
 async def preview_path(body: PathRequest, request: Request) -> SVGResponse:
     """Every subpath, its arcs with their centres, the deviation magnified (``gcode`` and
     ``output`` ignored)."""
-    runtime = runtime_of(request)
-    settings = runtime.settings
+    fixed_answer(request, (SVG_MEDIA_TYPE,))
+    settings = runtime_of(request).settings
     job = to_path_job(body, ["body"], settings.path_max_input_segments, outputs=(("svg", None),))
-    result = await runtime.running_pool().run(
-        render, job, settings.path_limits, time_limit_s=settings.job_time_limit_s
-    )
-    if not isinstance(result, Document):
-        raise ProblemError(job_problem(result, ["body"], "path"))
-    return SVGResponse(result.body)
+    return await draw(
+        request, render, job, settings.path_limits, endpoint="paths_preview",
+        problem_of=lambda error: job_problem(error, ["body"], "path"),
+    )  # fmt: skip

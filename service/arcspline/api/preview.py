@@ -1,23 +1,27 @@
 """``POST /v1/preview``: the picture of an approximation (``arcspline.outputs.svg``), drawn
-in a worker."""
+in a worker — and how every preview (spiral, path, drawing) is drawn and counted."""
 
 from __future__ import annotations
 
-from typing import Any
+from collections.abc import Callable
+from typing import Any, TypeVar
 
 from fastapi import APIRouter, Request
 from starlette.responses import Response
 
+from arcspline.geometry import Limits
 from arcspline.outputs.svg import MEDIA_TYPE
 from arcspline.worker.jobs import Document, render
 
 from .errors import ProblemError, problem_responses
+from .negotiation import fixed_answer
 from .routing import LeanRoute
 from .runtime import runtime_of
 from .schemas import ApproximateRequest
 from .translate import job_problem, to_job
 
 router = APIRouter(tags=["approximation"], route_class=LeanRoute)
+JobT = TypeVar("JobT")
 
 
 class SVGResponse(Response):
@@ -31,8 +35,31 @@ def svg_responses(*more: int) -> dict[int | str, dict[str, Any]]:
             "description": "The picture",
             "content": {MEDIA_TYPE: {"schema": {"type": "string"}}},
         },
-        **problem_responses(*sorted({400, 413, 422, 503, 504, *more})),
+        **problem_responses(*sorted({400, 406, 413, 422, 503, 504, *more})),
     }
+
+
+async def draw(
+    request: Request,
+    render: Callable[[JobT, Limits], object],
+    job: JobT,
+    limits: Limits,
+    *,
+    endpoint: str,
+    problem_of: Callable[[Any], dict[str, Any]],
+) -> SVGResponse:
+    """The picture ``render`` draws of ``job`` in a worker, counted in the job metrics under
+    ``endpoint`` as every answer is; anything else it returns is a refusal, answered with
+    the problem ``problem_of`` makes of it."""
+    runtime = runtime_of(request)
+    result = await runtime.running_pool().run(
+        render, job, limits, time_limit_s=runtime.settings.job_time_limit_s
+    )
+    if not isinstance(result, Document):
+        runtime.metrics.job_error(endpoint)
+        raise ProblemError(problem_of(result))
+    runtime.metrics.job_ok(endpoint, 0, 0)
+    return SVGResponse(result.body)
 
 
 @router.post(
@@ -45,12 +72,9 @@ def svg_responses(*more: int) -> dict[int | str, dict[str, Any]]:
 async def preview(body: ApproximateRequest, request: Request) -> SVGResponse:
     """The spiral, its arcs with their centres, the deviation magnified (``gcode`` and
     ``output`` ignored)."""
-    runtime = runtime_of(request)
+    fixed_answer(request, (MEDIA_TYPE,))
     job = to_job(body, ["body"], outputs=(("svg", None),))
-    settings = runtime.settings
-    result = await runtime.running_pool().run(
-        render, job, settings.limits, time_limit_s=settings.job_time_limit_s
-    )
-    if not isinstance(result, Document):
-        raise ProblemError(job_problem(result, ["body"]))
-    return SVGResponse(result.body)
+    return await draw(
+        request, render, job, runtime_of(request).settings.limits, endpoint="preview",
+        problem_of=lambda error: job_problem(error, ["body"]),
+    )  # fmt: skip

@@ -9,7 +9,8 @@ endpoint directly with what its signature asks for: the :class:`Request`, and at
 JSON body model, validated by pydantic-core straight from the bytes
 (``TypeAdapter.validate_json``). Failures are what FastAPI raises for a body: a
 :class:`RequestValidationError` with paths under ``body``; a body that is not JSON at all is a
-``malformed_json`` problem.
+``malformed_json`` problem, one not declared JSON an ``unsupported_media_type`` one (415, which
+the route declares in its contract).
 """
 
 from __future__ import annotations
@@ -23,10 +24,12 @@ from fastapi import Request
 from fastapi.exceptions import RequestValidationError
 from fastapi.routing import APIRoute
 from pydantic import BaseModel, TypeAdapter, ValidationError
+from starlette.concurrency import run_in_threadpool
 from starlette.requests import ClientDisconnect
 from starlette.responses import Response
 
-from .errors import ProblemError, problem
+from .duplicates import DuplicateKey, first_duplicate, has_duplicate
+from .errors import ProblemError, problem, problem_responses
 
 Endpoint = Callable[..., Awaitable[Response]]
 
@@ -34,6 +37,11 @@ Endpoint = Callable[..., Awaitable[Response]]
 class LeanRoute(APIRoute):
     """An :class:`APIRoute` whose endpoint takes only a ``Request`` and/or one body model and
     returns a ``Response``; anything else is refused when the route is declared."""
+
+    def __init__(self, path: str, endpoint: Endpoint, **kwargs: Any) -> None:
+        if _parameters(endpoint)[1] is not None:  # a body: 415 if it is not JSON
+            kwargs["responses"] = {**(kwargs.get("responses") or {}), **problem_responses(415)}
+        super().__init__(path, endpoint, **kwargs)
 
     def get_route_handler(self) -> Callable[[Request], typing.Coroutine[Any, Any, Response]]:
         endpoint: Endpoint = self.endpoint
@@ -92,17 +100,42 @@ def is_json(content_type: str | None) -> bool:
     return maintype == "application" and (subtype == "json" or subtype.endswith("+json"))
 
 
+def unsupported_media_type(content_type: str | None) -> ProblemError:
+    """415 for a body that is not declared JSON (docs/http-api.md#request-bodies): a body
+    without a ``Content-Type`` too — nothing here reads one, and a browser may send a body
+    with none without asking first (no CORS preflight)."""
+    if not content_type:
+        detail = (
+            "the request has no Content-Type: send the body as application/json "
+            "(curl: --json, or -H 'Content-Type: application/json'; -d alone sends "
+            "application/x-www-form-urlencoded)"
+        )
+    else:
+        media_type = content_type.split(";", 1)[0].strip()[:100]
+        detail = (
+            f"the body's media type {media_type!r} is not one this endpoint reads: "
+            "application/json (or another JSON type, application/*+json)"
+        )
+    return ProblemError(problem("unsupported_media_type", detail))
+
+
 async def json_body(request: Request, adapter: TypeAdapter[Any]) -> Any:
-    """The request's JSON body validated by ``adapter``, as FastAPI would take it: an empty
-    body is a missing one, a body not declared as JSON is not an object."""
+    """The request's JSON body validated by ``adapter``, as FastAPI would take it (an empty
+    body is a missing one), except: a body not declared JSON is a 415, and one that names a
+    key twice in an object a 422 (:mod:`.duplicates`)."""
     raw = await read_body(request)
     if not raw:
         missing = {"type": "missing", "loc": ("body",), "msg": "Field required", "input": None}
         raise RequestValidationError([missing])
+    content_type = request.headers.get("content-type")
+    if not is_json(content_type):
+        raise unsupported_media_type(content_type)
+    if has_duplicate(raw):
+        duplicate = await run_in_threadpool(first_duplicate, raw)
+        if duplicate is not None:
+            raise RequestValidationError([_duplicate_error(duplicate)])
     try:
-        if is_json(request.headers.get("content-type")):
-            return adapter.validate_json(raw)
-        return adapter.validate_python(raw)  # bytes: "a valid dictionary" is what fails
+        return adapter.validate_json(raw)
     except ValidationError as error:
         errors = error.errors(include_url=False)
         malformed = next((e for e in errors if e["type"] == "json_invalid"), None)
@@ -111,6 +144,15 @@ async def json_body(request: Request, adapter: TypeAdapter[Any]) -> Any:
             detail = f"the body is not valid JSON: {_plainly(reason)}"
             raise ProblemError(problem("malformed_json", detail)) from None
         raise RequestValidationError([{**e, "loc": ("body", *e["loc"])} for e in errors]) from None
+
+
+def _duplicate_error(duplicate: DuplicateKey) -> dict[str, Any]:
+    return {
+        "type": "duplicate_key",
+        "loc": ("body", *duplicate.loc),
+        "msg": f"Duplicate key: the object names it {duplicate.times} times (which value is "
+        "meant is ambiguous)",
+    }
 
 
 #: pydantic-core's words for JSON it cannot take, said plainly (its own follow, with the

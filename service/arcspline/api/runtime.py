@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import asyncio
 from dataclasses import dataclass, field
 
 from fastapi import Request
@@ -22,6 +23,9 @@ class Runtime:
     metrics: Metrics = field(init=False)
     pool: WorkerPool | None = None
     coalescer: Coalescer[Job, Limits, JobResult] | None = None
+    #: JSON batch answers computed or sent at once: each holds up to the work budget
+    #: (docs/deployment.md, "Memory"); two keep both workers busy while one is sent.
+    json_answers: asyncio.Semaphore = field(default_factory=lambda: asyncio.Semaphore(2))
 
     def __post_init__(self) -> None:
         self.metrics = Metrics(lambda: self.pool)

@@ -55,6 +55,8 @@ OUTPUT_MEDIA_TYPES: dict[OutputFormat, str] = {
     "dxf": "image/vnd.dxf",
     "svg": "image/svg+xml",
 }
+#: A streamed batch's answer: one JSON line per job, in order (``Accept`` asks for it).
+NDJSON_MEDIA_TYPE = "application/x-ndjson"
 #: The default of ``ARCSPLINE_BATCH_MAX_JOBS``: what the schema shows as a batch's
 #: ``maxItems`` (the server's configured limit applies, with a 413).
 BATCH_MAX_JOBS = Settings.model_fields["batch_max_jobs"].default
@@ -338,6 +340,11 @@ class ProblemResponse(ResponseModel):
     detail: str
     request_id: str | None = None
     errors: list[ProblemErrorResponse] | None = None
+    errors_omitted: int | None = Field(
+        default=None,
+        description="How many errors were left out: `errors` lists the first 50 (each name "
+        "and message cut to 200 characters).",
+    )
     limit: float | None = Field(default=None, description="The limit that was crossed, if any.")
 
 

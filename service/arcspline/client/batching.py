@@ -13,16 +13,18 @@ from __future__ import annotations
 
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
-from typing import TypeAlias
+from typing import Any, TypeAlias, get_args
 
 import httpx
+from pydantic import TypeAdapter
 
 from arcspline.api.path_schemas import PathBatchResponse, PathResponse
-from arcspline.api.schemas import ApproximateResponse, BatchResponse
+from arcspline.api.schemas import NDJSON_MEDIA_TYPE, ApproximateResponse, BatchResponse
 from arcspline.settings import Settings
 
 from .errors import ServiceError
 from .operations import ENDPOINTS, AnyRequest, Call, Kind, encode, kind_of
+from .parsing import gc_paused
 
 #: A batch's answer to one job: its response, or what ended it — the service's refusal, or
 #: a connection that failed after every retry.
@@ -32,6 +34,9 @@ Entry: TypeAlias = ApproximateResponse | PathResponse | ServiceError | httpx.Tra
 DEFAULT_MAX_JOBS: int = Settings.model_fields["batch_max_jobs"].default
 DEFAULT_MAX_BYTES: int = Settings.model_fields["max_body_bytes"].default
 _OPEN, _SEP, _CLOSE = b'{"jobs":[', b",", b"]}"
+#: A stream of entries, one line each, has no total work budget (docs/http-api.md,
+#: "Batches"); a server without streams answers the whole JSON.
+_ACCEPT = f"{NDJSON_MEDIA_TYPE}, application/json;q=0.5"
 
 
 @dataclass(frozen=True)
@@ -57,7 +62,7 @@ class BatchPlan:
     def call(self, chunk: Chunk) -> Call[list[Entry]]:
         path = ENDPOINTS[self.kind][1]
         assert path is not None
-        return Call("POST", path, chunk.body, "application/json", _entries_reader(self.kind))
+        return Call("POST", path, chunk.body, _ACCEPT, _entries_reader(self.kind, len(chunk.jobs)))
 
 
 def plan(kind: Kind, requests: Iterable[AnyRequest], max_jobs: int, max_bytes: int) -> BatchPlan:
@@ -104,17 +109,34 @@ def split(chunk: Chunk, error: ServiceError) -> list[Chunk] | None:
 Outcome: TypeAlias = list[Entry] | ServiceError | httpx.TransportError
 
 
-def _entries_reader(kind: Kind) -> Callable[[httpx.Response], list[Entry]]:
-    model: type[BatchResponse | PathBatchResponse] = (
-        BatchResponse if kind == "spiral" else PathBatchResponse
-    )
+_MODELS: dict[Kind, type[BatchResponse | PathBatchResponse]] = {
+    "spiral": BatchResponse,
+    "path": PathBatchResponse,
+}
+#: Each kind's entry (``results[i]``, one line of a stream), validated from its JSON bytes.
+_ENTRIES: dict[Kind, TypeAdapter[Any]] = {
+    kind: TypeAdapter(get_args(model.model_fields["results"].annotation)[0])
+    for kind, model in _MODELS.items()
+}
+
+
+def _entries_reader(kind: Kind, jobs: int) -> Callable[[httpx.Response], list[Entry]]:
+    """Reads a chunk's answer of ``jobs`` entries: a stream (a line each) or one JSON."""
+    model, entry = _MODELS[kind], _ENTRIES[kind]
 
     def read(response: httpx.Response) -> list[Entry]:
-        parsed = model.model_validate_json(response.content)
-        return [
-            entry.result if entry.status == "ok" else ServiceError(entry.error)
-            for entry in parsed.results
-        ]
+        media_type = response.headers.get("content-type", "").split(";", 1)[0].strip()
+        with gc_paused():
+            if media_type == NDJSON_MEDIA_TYPE:
+                lines = response.content.split(b"\n")
+                entries = [entry.validate_json(line) for line in lines if line.strip()]
+            else:
+                entries = list(model.model_validate_json(response.content).results)
+        if len(entries) != jobs:
+            raise httpx.RemoteProtocolError(
+                f"the answer ended after {len(entries)} of its {jobs} entries"
+            )
+        return [e.result if e.status == "ok" else ServiceError(e.error) for e in entries]
 
     return read
 

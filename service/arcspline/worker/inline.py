@@ -1,14 +1,16 @@
 """A pool without worker processes, for the command line: tasks run in a thread of the
 calling process.
 
-:class:`InlinePool` is a :class:`~arcspline.worker.pool.WorkerPool` in every way the API sees
-(admission, capacity, slots, coalescing, drain), but its tasks are the same functions called
-directly, in a thread so that the event loop stays free: no process to start (a one-file
-command answers in the time of the work itself) and no pickling. What it gives up: time
-limits are not enforced (a thread cannot be stopped; the caller waits for the work), a task
-that crashes the interpreter takes the caller with it, and tasks share one interpreter (the
-core holds the GIL), so ``size`` buys concurrency, not parallelism. The threads are daemons:
-a process that is interrupted does not wait for them.
+:class:`InlinePool` is a :class:`~arcspline.worker.pool.WorkerPool` in every way the API
+sees (admission, capacity, slots and their lanes, coalescing, drain), but its tasks are the
+same functions called directly, in a thread so that the event loop stays free: no process to
+start (a one-file command answers in the time of the work itself) and no pickling. What it
+gives up: time limits are not enforced (a thread cannot be stopped; the caller waits for the
+work), a cancelled task's thread runs on to its end while its slot goes to the next task
+(the pool kills its worker instead), a task that crashes the interpreter takes the caller
+with it, and tasks share one interpreter (the core holds the GIL), so ``size`` buys
+concurrency, not parallelism. The threads are daemons: a process that is interrupted does
+not wait for them.
 """
 
 from __future__ import annotations

@@ -13,8 +13,9 @@ core, the outputs and orjson, never the web stack.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-from typing import Any, NamedTuple
+import dataclasses
+from collections.abc import Callable, Sequence
+from typing import Any, NamedTuple, TypeVar
 
 import orjson
 
@@ -308,6 +309,75 @@ def approximate_path_one(job: PathJob, limits: Limits) -> JobResult:
 def approximate_path_chunk(jobs: Sequence[PathJob], limits: Limits) -> list[JobResult]:
     """Many paths in one task, in order (each alone: a path is already one compiled loop)."""
     return [approximate_path_one(job, limits) for job in jobs]
+
+
+AnyJob = TypeVar("AnyJob", Job, PathJob)
+
+
+class Budgeted(NamedTuple):
+    """A chunk's results within its budget of output segments (docs/http-api.md, "Work
+    budget"): every job's, in order, if ``complete``; else those of the jobs before the one
+    that would have passed the budget (the rest are not answered)."""
+
+    results: list[JobResult]
+    segments: int
+    complete: bool
+
+
+def segments_of(result: JobResult) -> int:
+    """The output segments a result holds (none for an error)."""
+    return result.arc_count + result.line_count if isinstance(result, Encoded) else 0
+
+
+def _over_cap(result: JobResult, cap: int, limits: Limits) -> bool:
+    """Whether ``result`` hit a segment cap lower than the job's own limit (so the job may
+    still fit under that limit, and only the cap refused it)."""
+    return (
+        isinstance(result, GeometryError)
+        and result.kind == "segment_limit"
+        and cap < limits.max_segments
+    )
+
+
+def within_budget(
+    run: Callable[[list[AnyJob], Limits], list[JobResult]],
+    jobs: Sequence[AnyJob],
+    limits: Limits,
+    budget_segments: int,
+) -> Budgeted:
+    """``run(jobs, limits)`` such that never more than about ``budget_segments`` output
+    segments are computed (and held) at once: the core stops a curve at its segment limit,
+    so a curve given a cap computes at most that many.
+
+    First every job in one call, each capped at an equal share of the budget (small jobs,
+    the common case, finish there); then, in order, each job that hit its share alone,
+    capped at what is left (letting go of the answers after it if they crowd it out: they
+    are computed again, one by one). A job that passes what is left ends the chunk there:
+    the results are of the jobs before it, and ``complete`` is false.
+    """
+    count = len(jobs)
+    share = min(limits.max_segments, max(1, budget_segments // max(count, 1)))
+    answers: list[JobResult | None] = list(run(list(jobs), _capped(limits, share)))
+    held = sum(segments_of(r) for r in answers if r is not None)  # in memory now
+    results: list[JobResult] = []
+    for i, answer in enumerate(answers):
+        if answer is None or _over_cap(answer, share, limits):
+            if budget_segments - held < limits.max_segments:
+                held -= sum(segments_of(r) for r in answers[i + 1 :] if r is not None)
+                answers[i + 1 :] = [None] * (count - i - 1)
+            # At least one: an error takes none, and a single segment past is noticed.
+            cap = max(1, min(limits.max_segments, budget_segments - held))
+            (answer,) = run([jobs[i]], _capped(limits, cap))
+            held += segments_of(answer)
+            if _over_cap(answer, cap, limits) or held > budget_segments:
+                break
+        results.append(answer)
+    complete = len(results) == count and held <= budget_segments
+    return Budgeted(results, sum(map(segments_of, results)), complete)
+
+
+def _capped(limits: Limits, max_segments: int) -> Limits:
+    return dataclasses.replace(limits, max_segments=max_segments)
 
 
 def render(job: Job | PathJob, limits: Limits) -> Document | GeometryError | GcodeError:

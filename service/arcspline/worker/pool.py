@@ -12,6 +12,12 @@ alone:
 - admission is bounded by ``capacity`` units in flight (running or waiting), not by the pool
   size; beyond it :class:`QueueFullError` (the API answers 503 + Retry-After);
 - a task waits for an idle worker; its time limit measures its running time, not its wait;
+- two lanes share the workers: a waiting task of a single request (``lane="single"``) takes
+  the next free worker before any waiting batch chunk (``lane="batch"``), so that singles
+  wait for at most one chunk, not for the batches queued before them (docs/http-api.md,
+  "Cancellation, drain and fairness");
+- a task whose caller is cancelled (its client disconnected, or the drain ended) kills its
+  worker, which is replaced: no worker computes what no one waits for;
 - a task past its time limit (:class:`JobTimeoutError`) means a stuck worker: that worker is
   killed and replaced, so it never holds a slot for good;
 - a worker that dies (killed, out of memory) is replaced, and its task retried once on
@@ -21,7 +27,9 @@ alone:
 
 :class:`Coalescer` sends single jobs that arrive while every worker is busy to a worker
 together, as one task: under load one compiled loop of the core serves many requests (and
-one round trip to a worker), while an idle service still starts each job at once.
+one round trip to a worker), while an idle service still starts each job at once. A
+coalesced task runs on while any of its requests waits for it; once all have gone, it is
+cancelled (and its worker killed) like any other.
 
 Dependency direction: the API imports this module; this module and
 ``arcspline.worker.jobs`` import only the geometry core and the outputs, never the web stack.
@@ -128,6 +136,8 @@ class PoolUnavailableError(PoolError):
 
 
 PoolState = Literal["stopped", "starting", "ready", "draining"]
+#: Who waits for a task: a single request, or a batch (whose chunks yield to singles).
+Lane = Literal["single", "batch"]
 
 
 class _WorkerDiedError(Exception):
@@ -230,8 +240,7 @@ class WorkerPool:
         self._idle_workers: asyncio.Queue[_Worker] = asyncio.Queue()
         self._starting = 0
         # One slot per worker: a task holds one from before it takes a worker until it ends.
-        self._slots = asyncio.Semaphore(size)
-        self._slots_held = 0
+        self._slots = _Slots(size)
         self._idle = asyncio.Event()
         self._idle.set()
         self._background: set[asyncio.Task[None]] = set()
@@ -299,13 +308,19 @@ class WorkerPool:
         if self.in_flight == 0:
             self._idle.set()
 
-    async def run(self, fn: Callable[..., T], *args: Any, time_limit_s: float) -> T:
-        """Run ``fn(*args)`` in a worker, with ``time_limit_s`` of running time."""
+    async def run(
+        self, fn: Callable[..., T], *args: Any, time_limit_s: float, lane: Lane = "single"
+    ) -> T:
+        """Run ``fn(*args)`` in a worker, with ``time_limit_s`` of running time (a batch's
+        chunk sent alone says ``lane="batch"``)."""
         with self.admit():
-            return await self._run_admitted(fn, args, time_limit_s, deadline=None)
+            return await self._run_admitted(fn, args, time_limit_s, None, lane)
 
     async def run_many(
-        self, calls: Sequence[tuple[Callable[..., T], tuple[Any, ...]]], time_limit_s: float
+        self,
+        calls: Sequence[tuple[Callable[..., T], tuple[Any, ...]]],
+        time_limit_s: float,
+        lane: Lane = "batch",
     ) -> list[T | PoolError]:
         """Run several tasks admitted together; ``time_limit_s`` bounds them all, waits included.
 
@@ -314,7 +329,7 @@ class WorkerPool:
         with self.admit(len(calls)):
             deadline = asyncio.get_running_loop().time() + time_limit_s
             outcomes = await asyncio.gather(
-                *(self._run_admitted(fn, args, time_limit_s, deadline) for fn, args in calls),
+                *(self._run_admitted(fn, args, time_limit_s, deadline, lane) for fn, args in calls),
                 return_exceptions=True,
             )
         results: list[T | PoolError] = []
@@ -330,10 +345,11 @@ class WorkerPool:
         args: tuple[Any, ...],
         time_limit_s: float,
         deadline: float | None,
+        lane: Lane,
     ) -> T:
         try:
             async with asyncio.timeout_at(deadline):
-                await self._take_slot()
+                await self._take_slot(lane)
         except TimeoutError:
             raise JobTimeoutError(time_limit_s) from None
         try:
@@ -341,18 +357,16 @@ class WorkerPool:
         finally:
             self._give_slot()
 
-    async def _take_slot(self) -> None:
-        await self._slots.acquire()
-        self._slots_held += 1
+    async def _take_slot(self, lane: Lane = "single") -> None:
+        await self._slots.take(lane)
 
     def _give_slot(self) -> None:
-        self._slots_held -= 1
-        self._slots.release()
+        self._slots.give()
 
     @property
     def free_slots(self) -> int:
         """Workers no task has claimed: tasks sent now would run at once."""
-        return self.size - self._slots_held
+        return self._slots.free
 
     async def _execute(
         self,
@@ -514,6 +528,46 @@ class WorkerPool:
         task.add_done_callback(self._background.discard)
 
 
+class _Slots:
+    """The workers' slots, handed to waiting tasks lane by lane: ``single`` first, then
+    ``batch``, each in the order it asked (a semaphore with two queues)."""
+
+    __slots__ = ("_waiting", "free")
+
+    def __init__(self, size: int) -> None:
+        self.free = size
+        self._waiting: dict[Lane, deque[asyncio.Future[None]]] = {
+            "single": deque(),
+            "batch": deque(),
+        }
+
+    async def take(self, lane: Lane) -> None:
+        # A task waits only while no slot is free, so a free slot means no one waits.
+        if self.free:
+            self.free -= 1
+            return
+        granted: asyncio.Future[None] = asyncio.get_running_loop().create_future()
+        waiting = self._waiting[lane]
+        waiting.append(granted)
+        try:
+            await granted
+        except BaseException:
+            if granted.done() and not granted.cancelled():
+                self.give()  # handed over, then cancelled: the next one's
+            else:
+                waiting.remove(granted)
+            raise
+
+    def give(self) -> None:
+        for waiting in self._waiting.values():  # "single", then "batch"
+            while waiting:
+                granted = waiting.popleft()
+                if not granted.done():
+                    granted.set_result(None)
+                    return
+        self.free += 1
+
+
 class _Admission:
     """Room reserved by :meth:`WorkerPool.admit` (a class, not a generator: it is on the path
     of every request)."""
@@ -601,7 +655,7 @@ class Coalescer(Generic[Item, Arg, T]):
         pool = self.pool
         try:
             while self._queue:
-                await pool._take_slot()
+                await pool._take_slot("single")
                 try:
                     # Shared with the workers still free, so that none idles while this
                     # task runs (their dispatchers take the rest).
@@ -619,15 +673,38 @@ class Coalescer(Generic[Item, Arg, T]):
         items = [item for item, _ in batch]
         limit = self._time_limit_s * len(items)
         self.tasks += 1
+        dispatcher = asyncio.current_task()
+        assert dispatcher is not None
+        waiting = len(batch)
+        running = abandoned = False
+
+        def forget(_result: asyncio.Future[T]) -> None:
+            # A request that has gone (cancelled: its client disconnected) waits no more;
+            # the task is cancelled, its worker killed, once none of its requests waits.
+            nonlocal waiting, abandoned
+            waiting -= 1
+            if waiting == 0 and running and not abandoned:
+                abandoned = True
+                dispatcher.cancel()
+
+        for _item, result in batch:
+            result.add_done_callback(forget)
         try:
+            running = True
             results = await self.pool._execute(
                 self._fn, (items, self._arg), limit, None, units=len(items)
             )
+        except asyncio.CancelledError:
+            if abandoned and dispatcher.uncancel() == 0:
+                return  # ours: the dispatcher goes on with the queue
+            raise
         except Exception as error:  # PoolError, or a bug in fn: every waiting request gets it
             for _, result in batch:
                 if not result.done():
                     result.set_exception(error)
             return
+        finally:
+            running = False
         for (_, result), value in zip(batch, results, strict=True):
             if not result.done():
                 result.set_result(value)

@@ -1,0 +1,114 @@
+"""A real server for the connection tests, optionally under a low open-file limit, and raw
+sockets to talk to it (the attacks are not HTTP that a client library would send)."""
+
+from __future__ import annotations
+
+import os
+import resource
+import signal
+import socket
+import subprocess
+import sys
+from collections.abc import Iterator
+from contextlib import contextmanager
+from pathlib import Path
+from typing import Any
+
+import orjson
+
+from tests.support.server import ROOT, Server
+
+#: Hang guard of every socket read: far beyond any answer's time.
+READ_TIMEOUT_S = 30.0
+
+
+def _free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        port: int = s.getsockname()[1]
+        return port
+
+
+@contextmanager
+def serving(tmp_path: Path, nofile: int | None = None, **settings: Any) -> Iterator[Server]:
+    """``python -m arcspline`` on a free port with ``ARCSPLINE_<NAME>`` from ``settings``;
+    ``nofile``: its soft and hard open-file limit."""
+    port = _free_port()
+    env = {k: v for k, v in os.environ.items() if not k.upper().startswith("ARCSPLINE_")}
+    env.update({f"ARCSPLINE_{k.upper()}": str(v) for k, v in settings.items()})
+
+    def limit_files() -> None:
+        if nofile is not None:
+            resource.setrlimit(resource.RLIMIT_NOFILE, (nofile, nofile))
+
+    log = tmp_path / f"server-{port}.log"
+    with log.open("wb") as sink:
+        process = subprocess.Popen(
+            [sys.executable, "-m", "arcspline", "--host", "127.0.0.1", "--port", str(port)],
+            cwd=ROOT,
+            env=env,
+            stdout=sink,
+            stderr=subprocess.STDOUT,
+            preexec_fn=limit_files,
+        )
+    server = Server(process=process, url=f"http://127.0.0.1:{port}", log=log)
+    try:
+        server.wait_ready()
+        yield server
+    finally:
+        if process.poll() is None:
+            process.send_signal(signal.SIGTERM)
+            try:
+                process.wait(timeout=60)
+            except subprocess.TimeoutExpired:
+                process.kill()
+                process.wait()
+
+
+def connect(server: Server) -> socket.socket:
+    host, port = server.url.removeprefix("http://").split(":")
+    return socket.create_connection((host, int(port)), timeout=READ_TIMEOUT_S)
+
+
+def read_until_closed(sock: socket.socket) -> bytes:
+    """Everything the server sends until it closes the connection (a reset counts as
+    closed: what arrived before it is kept)."""
+    chunks = []
+    while True:
+        try:
+            chunk = sock.recv(65536)
+        except ConnectionResetError:
+            break
+        if not chunk:
+            break
+        chunks.append(chunk)
+    return b"".join(chunks)
+
+
+def parse_response(raw: bytes) -> tuple[int, dict[str, str], bytes]:
+    """Status, headers (lower-case names) and body of one HTTP/1.1 response."""
+    head, _, body = raw.partition(b"\r\n\r\n")
+    lines = head.decode("latin-1").split("\r\n")
+    status = int(lines[0].split()[1])
+    headers = {}
+    for line in lines[1:]:
+        name, _, value = line.partition(":")
+        headers[name.strip().lower()] = value.strip()
+    return status, headers, body
+
+
+def problem_of(raw: bytes) -> tuple[int, dict[str, str], dict[str, Any]]:
+    """A problem response: status, headers and its parsed body (asserted to be one)."""
+    status, headers, body = parse_response(raw)
+    assert headers.get("content-type") == "application/problem+json", raw[:300]
+    parsed: dict[str, Any] = orjson.loads(body)
+    assert parsed["status"] == status
+    return status, headers, parsed
+
+
+def vm_kib(pid: int, field: str) -> int:
+    """``VmRSS`` or ``VmHWM`` (peak) of a process, in KiB, from /proc/<pid>/status."""
+    for line in Path(f"/proc/{pid}/status").read_text().splitlines():
+        if line.startswith(field + ":"):
+            return int(line.split()[1])
+    raise AssertionError(f"no {field} for {pid}")
