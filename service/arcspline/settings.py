@@ -149,8 +149,11 @@ class Settings(BaseSettings):
     path_max_input_segments: PositiveInt = Field(
         default=20_000, description="Most input segments in one path (422 beyond)."
     )
+    # One answer's segments are held some 2.7 KiB each at the peak (rows, JSON, its pickle,
+    # in the worker and the server; docs/deployment.md "Memory"): 200 000 took one drawing
+    # to 688 MiB, over the pod's 512; at 50 000, two at once peak at 394 MiB.
     drawing_max_segments: PositiveInt = Field(
-        default=200_000,
+        default=50_000,
         le=MAX_SEGMENTS,
         description="Most segments of one drawing, as read and as output (422 beyond).",
     )

@@ -41,6 +41,18 @@ def _rss_mib(pid: int) -> float:
     return 0.0
 
 
+def _pss_mib(pid: int) -> float:
+    """Proportional set size: each shared page split among its processes, as the pod's
+    memory cgroup charges it once."""
+    try:
+        for line in Path(f"/proc/{pid}/smaps_rollup").read_text().splitlines():
+            if line.startswith("Pss:"):
+                return int(line.split()[1]) / 1024
+    except OSError:
+        pass
+    return 0.0
+
+
 def _tree(pid: int) -> set[int]:
     """``pid`` and all its descendants (forkserver, workers)."""
     known = parents()
@@ -56,6 +68,7 @@ class _Watch:
     def __init__(self, url: str, pid: int) -> None:
         self.url, self.pid = url, pid
         self.peak_mib = 0.0
+        self.peak_pss_mib = 0.0
         self.latencies_s: list[float] = []
         self._stop = threading.Event()
         self._threads = [threading.Thread(target=self._rss), threading.Thread(target=self._probe)]
@@ -73,7 +86,9 @@ class _Watch:
 
     def _rss(self) -> None:
         while not self._stop.is_set():
-            self.peak_mib = max(self.peak_mib, sum(map(_rss_mib, _tree(self.pid))))
+            tree = _tree(self.pid)
+            self.peak_mib = max(self.peak_mib, sum(map(_rss_mib, tree)))
+            self.peak_pss_mib = max(self.peak_pss_mib, sum(map(_pss_mib, tree)))
             time.sleep(0.01)
 
     def _probe(self) -> None:
@@ -119,4 +134,51 @@ def test_liveness_and_memory_during_the_largest_batch_allowed(tmp_path: Path) ->
         assert response.status_code == 200, response.text[:300]
         assert len(response.json()["results"]) == 39
     assert watch.peak_mib < MAX_TREE_RSS_MIB
+    assert max(watch.latencies_s) < MAX_HEALTHZ_S
+
+
+def _ellipses(count: int) -> bytes:
+    """An SVG of ``count`` small ellipses: about 24 output segments each at tolerance 0.01,
+    some 11 KB of JSON."""
+    shapes = "".join(
+        f'<ellipse cx="{(i % 250) * 10}" cy="{(i // 250) * 10}" rx="4" ry="2"/>'
+        for i in range(count)
+    )
+    return (
+        '<svg xmlns="http://www.w3.org/2000/svg" width="3000mm" height="3000mm" '
+        f'viewBox="0 0 3000 3000">{shapes}</svg>'
+    ).encode()
+
+
+def _drawings_at_once(url: str, svg: bytes, count: int) -> list[httpx.Response]:
+    responses: list[httpx.Response] = []
+
+    def post() -> None:
+        headers = {"Content-Type": "image/svg+xml"}
+        answer = httpx.post(
+            f"{url}/v1/drawings/approximate", content=svg, params={"tolerance": 0.01},
+            headers=headers, timeout=300,
+        )  # fmt: skip
+        responses.append(answer)
+
+    threads = [threading.Thread(target=post) for _ in range(count)]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+    return responses
+
+
+def test_two_of_the_largest_drawings_allowed_fit_in_the_pod(tmp_path: Path) -> None:
+    """Two drawings of ~49,000 output segments (21.7 MB of JSON each) at once, one per
+    worker. With the old limit (200,000 segments) two drawings of 195,000 were answered and
+    took the tree to 1,047 MiB of PSS; they are refused now."""
+    with running_server(tmp_path, pool_size=2) as server:
+        with _Watch(server.url, server.process.pid) as watch:
+            answers = _drawings_at_once(server.url, _ellipses(2_000), 2)
+            too_large = _drawings_at_once(server.url, _ellipses(8_000), 2)
+        assert [r.status_code for r in answers] == [200, 200], answers[0].text[:300]
+        assert all(r.json()["stats"]["segment_count"] > 45_000 for r in answers)
+        assert [r.status_code for r in too_large] == [422, 422], too_large[0].text[:300]
+    assert watch.peak_pss_mib < MAX_TREE_RSS_MIB
     assert max(watch.latencies_s) < MAX_HEALTHZ_S
