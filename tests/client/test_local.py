@@ -9,6 +9,7 @@ from typing import Any
 import pytest
 
 from arcspline.client import AsyncClient, ServiceError, local_client
+from arcspline.settings import Settings
 from tests.support.server import Server
 
 from .test_sync import DRAWING, PATH
@@ -55,3 +56,29 @@ def test_local_refusals_are_the_servers(paper_request: dict[str, Any]) -> None:
     error = asyncio.run(run())
     assert (error.status, error.kind) == (422, "tolerance-floor")
     assert error.limit is not None
+
+
+def test_a_local_drawing_may_be_larger_than_the_services() -> None:
+    # One line more than the service's default allows (50 000): answered locally, refused
+    # when the local limit is set to the service's.
+    lines = DEFAULT_DRAWING_MAX_SEGMENTS + 1
+    svg = '<svg xmlns="http://www.w3.org/2000/svg">' + "".join(
+        f'<line x1="{i}" y1="0" x2="{i}" y2="5"/>' for i in range(lines)
+    ) + "</svg>"  # fmt: skip
+    request = {"format": "svg", "document": svg, "tolerance": 0.01}
+
+    async def run(**settings: Any) -> int | ServiceError:
+        async with local_client(**settings) as local:
+            try:
+                answer = await local.approximate_drawing(request)
+            except ServiceError as error:
+                return error
+            return answer.stats.segment_count
+
+    assert asyncio.run(run()) == lines
+    refused = asyncio.run(run(drawing_max_segments=DEFAULT_DRAWING_MAX_SEGMENTS))
+    assert isinstance(refused, ServiceError)
+    assert refused.status == 422
+
+
+DEFAULT_DRAWING_MAX_SEGMENTS = Settings.model_fields["drawing_max_segments"].default

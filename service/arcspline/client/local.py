@@ -17,6 +17,10 @@ from .asynchronous import AsyncClient
 #: The body limit of the service in this process: a document of up to 256 MiB (a request
 #: holds a document as JSON text, which escaping makes a fifth larger).
 LOCAL_MAX_BODY_BYTES = 256 * 1024 * 1024
+#: The most segments of a drawing in this process: the service's default (50 000) is what a
+#: pod of 512 MiB holds two at a time (docs/deployment.md, "Memory"); one drawing of 200 000
+#: takes some 700 MiB, which a workstation has.
+LOCAL_DRAWING_MAX_SEGMENTS = 200_000
 
 
 @asynccontextmanager
@@ -27,13 +31,18 @@ async def local_client(workers: int = 0, **settings: Any) -> AsyncIterator[Async
     limits; for one file); ``workers=n``: a pool of ``n`` worker processes, as the server
     has (for many files at once). ``settings`` override the service's settings
     (``arcspline.settings.Settings``; the environment's ``ARCSPLINE_*`` apply too), but for
-    the body limit: what a network service must bound, a file on this machine need not, so
-    it is :data:`LOCAL_MAX_BODY_BYTES` unless given.
+    the body and drawing limits: what a network service must bound, a file on this machine
+    need not, so they are :data:`LOCAL_MAX_BODY_BYTES` and
+    :data:`LOCAL_DRAWING_MAX_SEGMENTS` unless given.
     """
     from arcspline.api.app import create_app
     from arcspline.settings import Settings
 
-    settings = {"max_body_bytes": LOCAL_MAX_BODY_BYTES, **settings}
+    settings = {
+        "max_body_bytes": LOCAL_MAX_BODY_BYTES,
+        "drawing_max_segments": LOCAL_DRAWING_MAX_SEGMENTS,
+        **settings,
+    }
     if workers == 0:
         settings = {"start_method": "inline", "pool_size": 1, **settings}
     else:
