@@ -85,6 +85,7 @@ def serve(host: str | None = None, port: int | None = None) -> None:
         max_header_bytes=settings.max_header_bytes,
         header_timeout_s=settings.header_timeout_s,
         body_timeout_s=settings.body_timeout_s,
+        send_timeout_s=settings.send_timeout_s,
         retry_after_s=settings.retry_after_s,
     )
     # Uvicorn drains on SIGTERM, then raises the signal again under the handler it found at

@@ -199,6 +199,11 @@ class Settings(BaseSettings):
     body_timeout_s: PositiveFloat = Field(
         default=60.0, description="Time for a request's body to arrive after its headers (408)."
     )
+    send_timeout_s: PositiveFloat = Field(
+        default=30.0,
+        description="Longest a client may leave the answer unread, its socket's buffer full, "
+        "before the connection is dropped (and the answer's memory freed).",
+    )
     keep_alive_timeout_s: PositiveInt = Field(
         default=5, description="How long an idle keep-alive connection stays open (s)."
     )

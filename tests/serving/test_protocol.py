@@ -194,3 +194,40 @@ def test_beyond_the_cap_with_every_connection_busy_a_client_gets_503(tmp_path: P
                 sock.close()
     assert (status, body["type"]) == (503, PROBLEM + "too-many-connections")
     assert (headers["retry-after"], body["limit"]) == ("3", 2)
+
+
+def test_answers_left_unread_do_not_hold_the_batch_answers_turns(tmp_path: Path) -> None:
+    """Two clients ask for the largest JSON batch allowed (22 MB each) and never read: they
+    would hold the two JSON answers sent at once (api/batch_json.py) for as long as they
+    liked, and every other batch would wait out its time limit. Dropped after the send
+    timeout, they let a third batch through."""
+    floor_spiral = {**PAPER, "tolerance": 5.66e-10}  # 1,278 arcs: 39 fill the budget
+    big = orjson.dumps({"jobs": [floor_spiral] * 39})
+    request = (
+        b"POST /v1/approximate/batch HTTP/1.1\r\nHost: test\r\n"
+        b"Content-Type: application/json\r\nContent-Length: %d\r\n\r\n" % len(big)
+    ) + big
+    batch_time_limit_s = 20
+    with serving(
+        tmp_path, pool_size=2, send_timeout_s=1, batch_time_limit_s=batch_time_limit_s
+    ) as server:
+        stuck = []
+        for _ in range(2):
+            sock = socket.socket()
+            sock.setsockopt(socket.SOL_SOCKET, socket.SO_RCVBUF, 4096)  # reads nothing
+            host, port = server.url.removeprefix("http://").split(":")
+            sock.connect((host, int(port)))
+            sock.sendall(request)
+            stuck.append(sock)
+        try:
+            answer = httpx.post(
+                f"{server.url}/v1/approximate/batch",
+                json={"jobs": [PAPER]},
+                timeout=batch_time_limit_s + 10,
+            )
+        finally:
+            for sock in stuck:
+                sock.close()
+    # Without the timeout: 503 time-limit after waiting the whole 20 s for a turn.
+    assert answer.status_code == 200, answer.text[:300]
+    assert answer.elapsed.total_seconds() < batch_time_limit_s / 2

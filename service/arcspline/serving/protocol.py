@@ -10,6 +10,9 @@ and hold memory for as long as it likes. This protocol answers, as problem detai
   byte of a later request on it) → 408 ``request-timeout`` (closed without an answer if the
   client sent nothing at all, like an idle keep-alive connection);
 - a body not complete ``body_timeout_s`` after its headers, while the app waits for it → 408;
+- an answer the client leaves unread, the socket's buffer full, for ``send_timeout_s`` → the
+  connection is dropped, so that the answer (and, for a batch, its turn among the answers
+  sent at once) is not held for as long as the client likes;
 - HTTP that does not parse → 400 ``malformed-http`` (uvicorn answers text/plain);
 - a connection beyond ``max_connections`` first closes the connection that has waited longest
   without a request in the app (idle, or its headers still arriving); if every connection has
@@ -45,6 +48,7 @@ class ConnectionLimits:
     header_timeout_s: float
     body_timeout_s: float
     retry_after_s: int
+    send_timeout_s: float = 30.0
 
 
 def problem_bytes(
@@ -92,6 +96,7 @@ class BoundedHttpToolsProtocol(HttpToolsProtocol):
         self._headers_too_large = False
         self._header_timer: TimerHandle | None = None
         self._body_timer: TimerHandle | None = None
+        self._send_timer: TimerHandle | None = None
 
     # -- connection ----------------------------------------------------------------------
 
@@ -116,6 +121,7 @@ class BoundedHttpToolsProtocol(HttpToolsProtocol):
         self.waiting.pop(self, None)
         self._cancel_header_timer()
         self._cancel_body_timer()
+        self._cancel_send_timer()
         super().connection_lost(exc)
 
     def _make_room(self) -> bool:
@@ -213,6 +219,36 @@ class BoundedHttpToolsProtocol(HttpToolsProtocol):
         super().on_response_complete()
         if not self.transport.is_closing() and self.cycle.response_complete:
             self.waiting[self] = None
+
+    # -- writing -------------------------------------------------------------------------
+
+    def pause_writing(self) -> None:
+        # The transport's buffer passed its high-water mark: the client reads slower than
+        # the answer is written. It has send_timeout_s to drain it below the low-water mark.
+        super().pause_writing()
+        if self._send_timer is None:
+            self._send_timer = self.loop.call_later(
+                self.limits.send_timeout_s, self._on_send_timeout
+            )
+
+    def resume_writing(self) -> None:
+        super().resume_writing()
+        self._cancel_send_timer()
+
+    def _on_send_timeout(self) -> None:
+        self._send_timer = None
+        if self.flow.write_paused and not self.transport.is_closing():
+            log.info(
+                "a client left its answer unread for %g s; dropping the connection",
+                self.limits.send_timeout_s,
+            )
+            # Not close(): that would wait for the unread buffer to be flushed.
+            self.transport.abort()
+
+    def _cancel_send_timer(self) -> None:
+        if self._send_timer is not None:
+            self._send_timer.cancel()
+            self._send_timer = None
 
     # -- timeouts ------------------------------------------------------------------------
 
