@@ -1,68 +1,18 @@
-"""A real server for the connection tests, optionally under a low open-file limit, and raw
-sockets to talk to it (the attacks are not HTTP that a client library would send)."""
+"""Raw sockets to talk to a real server (``tests.support.server.running_server``): the
+attacks of the connection tests are not HTTP that a client library would send."""
 
 from __future__ import annotations
 
-import os
-import resource
-import signal
 import socket
-import subprocess
-import sys
-from collections.abc import Iterator
-from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
 import orjson
 
-from tests.support.server import ROOT, Server
+from tests.support.server import Server
 
 #: Hang guard of every socket read: far beyond any answer's time.
 READ_TIMEOUT_S = 30.0
-
-
-def _free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        port: int = s.getsockname()[1]
-        return port
-
-
-@contextmanager
-def serving(tmp_path: Path, nofile: int | None = None, **settings: Any) -> Iterator[Server]:
-    """``python -m arcspline`` on a free port with ``ARCSPLINE_<NAME>`` from ``settings``;
-    ``nofile``: its soft and hard open-file limit."""
-    port = _free_port()
-    env = {k: v for k, v in os.environ.items() if not k.upper().startswith("ARCSPLINE_")}
-    env.update({f"ARCSPLINE_{k.upper()}": str(v) for k, v in settings.items()})
-
-    def limit_files() -> None:
-        if nofile is not None:
-            resource.setrlimit(resource.RLIMIT_NOFILE, (nofile, nofile))
-
-    log = tmp_path / f"server-{port}.log"
-    with log.open("wb") as sink:
-        process = subprocess.Popen(
-            [sys.executable, "-m", "arcspline", "--host", "127.0.0.1", "--port", str(port)],
-            cwd=ROOT,
-            env=env,
-            stdout=sink,
-            stderr=subprocess.STDOUT,
-            preexec_fn=limit_files,
-        )
-    server = Server(process=process, url=f"http://127.0.0.1:{port}", log=log)
-    try:
-        server.wait_ready()
-        yield server
-    finally:
-        if process.poll() is None:
-            process.send_signal(signal.SIGTERM)
-            try:
-                process.wait(timeout=60)
-            except subprocess.TimeoutExpired:
-                process.kill()
-                process.wait()
 
 
 def connect(server: Server) -> socket.socket:

@@ -18,10 +18,9 @@ from tests.serving.raw import (
     parse_response,
     problem_of,
     read_until_closed,
-    serving,
     vm_kib,
 )
-from tests.support.server import Server
+from tests.support.server import Server, running_server
 
 pytestmark = [pytest.mark.integration, pytest.mark.xdist_group("integration")]
 
@@ -40,7 +39,7 @@ PAPER = {
 
 @pytest.fixture(scope="module")
 def server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Server]:
-    with serving(
+    with running_server(
         tmp_path_factory.mktemp("server"), pool_size=1, header_timeout_s=1, body_timeout_s=1
     ) as server:
         yield server
@@ -134,7 +133,7 @@ def _send_oversized(sock: socket.socket) -> None:
 
 
 def test_oversized_headers_hold_bounded_memory(tmp_path: Path) -> None:
-    with serving(tmp_path, pool_size=1) as server:
+    with running_server(tmp_path, pool_size=1) as server:
         pid = server.process.pid
         before_kib = vm_kib(pid, "VmRSS")
         clients = [connect(server) for _ in range(OVERSIZED_CLIENTS)]
@@ -162,7 +161,7 @@ IDLE_CONNECTIONS = 400
 def test_idle_connections_beyond_the_open_file_limit_do_not_starve_a_client(
     tmp_path: Path,
 ) -> None:
-    with serving(tmp_path, nofile=LOW_NOFILE, pool_size=1) as server:
+    with running_server(tmp_path, nofile=LOW_NOFILE, pool_size=1) as server:
         idle = [connect(server) for _ in range(IDLE_CONNECTIONS)]
         try:
             answer = httpx.get(f"{server.url}/healthz", timeout=READ_TIMEOUT_S)
@@ -177,7 +176,7 @@ def test_idle_connections_beyond_the_open_file_limit_do_not_starve_a_client(
 def test_beyond_the_cap_with_every_connection_busy_a_client_gets_503(tmp_path: Path) -> None:
     """Two connections whose requests are in the app (waiting for their bodies): the third
     is refused at once, as a problem with Retry-After."""
-    with serving(tmp_path, pool_size=1, max_connections=2, retry_after_s=3) as server:
+    with running_server(tmp_path, pool_size=1, max_connections=2, retry_after_s=3) as server:
         busy = [connect(server) for _ in range(2)]
         try:
             for sock in busy:
@@ -208,7 +207,7 @@ def test_answers_left_unread_do_not_hold_the_batch_answers_turns(tmp_path: Path)
         b"Content-Type: application/json\r\nContent-Length: %d\r\n\r\n" % len(big)
     ) + big
     batch_time_limit_s = 20
-    with serving(
+    with running_server(
         tmp_path, pool_size=2, send_timeout_s=1, batch_time_limit_s=batch_time_limit_s
     ) as server:
         stuck = []

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import resource
 import signal
 import socket
 import subprocess
@@ -72,11 +73,17 @@ class Server:
 
 
 @contextmanager
-def running_server(tmp_path: Path, **settings: Any) -> Iterator[Server]:
-    """``python -m arcspline`` on a free port, with ``ARCSPLINE_<NAME>`` from ``settings``."""
+def running_server(tmp_path: Path, nofile: int | None = None, **settings: Any) -> Iterator[Server]:
+    """``python -m arcspline`` on a free port, with ``ARCSPLINE_<NAME>`` from ``settings``;
+    ``nofile``: its soft and hard open-file limit, if given."""
     port = _free_port()
     env = {k: v for k, v in os.environ.items() if not k.upper().startswith("ARCSPLINE_")}
     env.update({f"ARCSPLINE_{k.upper()}": str(v) for k, v in settings.items()})
+
+    def limit_files() -> None:
+        if nofile is not None:
+            resource.setrlimit(resource.RLIMIT_NOFILE, (nofile, nofile))
+
     log = tmp_path / f"server-{port}.log"
     with log.open("wb") as sink:
         process = subprocess.Popen(
@@ -85,6 +92,7 @@ def running_server(tmp_path: Path, **settings: Any) -> Iterator[Server]:
             env=env,
             stdout=sink,
             stderr=subprocess.STDOUT,
+            preexec_fn=limit_files,
         )
     server = Server(process=process, url=f"http://127.0.0.1:{port}", log=log)
     try:

@@ -185,6 +185,28 @@ def filename(stem: str, output: OutputFormat) -> str:
     return f"{stem}.{_EXTENSIONS[output]}"
 
 
+async def rendered(
+    request: Request,
+    render: Callable[[JobT, Limits], object],
+    job: JobT,
+    limits: Limits,
+    endpoint: str,
+    problem_of: Callable[[Any], dict[str, Any]],
+) -> Document:
+    """The :class:`Document` ``render`` writes for ``job`` in a worker, counted in the job
+    metrics under ``endpoint``; anything else it returns is a refusal, raised as the problem
+    ``problem_of`` makes of it."""
+    runtime = runtime_of(request)
+    result = await runtime.running_pool().run(
+        render, job, limits, time_limit_s=runtime.settings.job_time_limit_s
+    )
+    if not isinstance(result, Document):
+        runtime.metrics.job_error(endpoint)
+        raise ProblemError(problem_of(result))
+    runtime.metrics.job_ok(endpoint, 0, 0)
+    return result
+
+
 async def answer_document(
     request: Request,
     render: Callable[[JobT, Limits], object],
@@ -197,16 +219,8 @@ async def answer_document(
     problem_of: Callable[[Any], dict[str, Any]],
 ) -> Response:
     """The :class:`Document` ``render`` writes for ``job`` in a worker, as an attachment
-    named after ``stem``; anything else it returns is a refusal, answered with the problem
-    ``problem_of`` makes of it (``endpoint``: the label of the job metrics)."""
-    runtime = runtime_of(request)
-    result = await runtime.running_pool().run(
-        render, job, limits, time_limit_s=runtime.settings.job_time_limit_s
-    )
-    if not isinstance(result, Document):
-        runtime.metrics.job_error(endpoint)
-        raise ProblemError(problem_of(result))
-    runtime.metrics.job_ok(endpoint, 0, 0)
+    named after ``stem`` (see :func:`rendered`)."""
+    result = await rendered(request, render, job, limits, endpoint, problem_of)
     disposition = f'attachment; filename="{filename(stem, output)}"'
     return Response(
         result.body, media_type=result.media_type, headers={"Content-Disposition": disposition}

@@ -11,10 +11,10 @@ from starlette.responses import Response
 
 from arcspline.geometry import Limits
 from arcspline.outputs.svg import MEDIA_TYPE
-from arcspline.worker.jobs import Document, render
+from arcspline.worker.jobs import render
 
-from .errors import ProblemError, problem_responses
-from .negotiation import fixed_answer
+from .errors import problem_responses
+from .negotiation import fixed_answer, rendered
 from .routing import LeanRoute
 from .runtime import runtime_of
 from .schemas import ApproximateRequest
@@ -48,17 +48,9 @@ async def draw(
     endpoint: str,
     problem_of: Callable[[Any], dict[str, Any]],
 ) -> SVGResponse:
-    """The picture ``render`` draws of ``job`` in a worker, counted in the job metrics under
-    ``endpoint`` as every answer is; anything else it returns is a refusal, answered with
-    the problem ``problem_of`` makes of it."""
-    runtime = runtime_of(request)
-    result = await runtime.running_pool().run(
-        render, job, limits, time_limit_s=runtime.settings.job_time_limit_s
-    )
-    if not isinstance(result, Document):
-        runtime.metrics.job_error(endpoint)
-        raise ProblemError(problem_of(result))
-    runtime.metrics.job_ok(endpoint, 0, 0)
+    """The picture ``render`` draws of ``job`` in a worker (see
+    :func:`.negotiation.rendered`)."""
+    result = await rendered(request, render, job, limits, endpoint, problem_of)
     return SVGResponse(result.body)
 
 
