@@ -20,7 +20,7 @@ from tests.serving.raw import (
     read_until_closed,
     vm_kib,
 )
-from tests.support.server import Server, running_server
+from tests.support.server import Server, parse_metrics, running_server
 
 pytestmark = [pytest.mark.integration, pytest.mark.xdist_group("integration")]
 
@@ -51,10 +51,17 @@ def _exchange(server: Server, request: bytes) -> bytes:
         return read_until_closed(sock)
 
 
+def _refused(server: Server, kind: str) -> float:
+    metrics = parse_metrics(httpx.get(f"{server.url}/metrics").text)
+    return metrics[f"arcspline_connections_refused_total{{kind={kind}}}"]
+
+
 def test_malformed_http_is_answered_as_a_problem(server: Server) -> None:
+    before = _refused(server, "malformed_http")
     status, headers, body = problem_of(_exchange(server, b"NOT HTTP AT ALL\r\n\r\n"))
     assert (status, body["type"]) == (400, PROBLEM + "malformed-http")
     assert headers["connection"] == "close"
+    assert _refused(server, "malformed_http") == before + 1  # and counted
 
 
 def test_headers_over_the_limit_are_refused_whole_or_unterminated(server: Server) -> None:
@@ -224,6 +231,7 @@ def test_answers_left_unread_do_not_hold_the_batch_answers_turns(tmp_path: Path)
                 json={"jobs": [PAPER]},
                 timeout=batch_time_limit_s + 10,
             )
+            assert _refused(server, "send_timeout") >= 1  # one turn was enough
         finally:
             for sock in stuck:
                 sock.close()

@@ -27,6 +27,7 @@ from prometheus_client.registry import Collector
 from starlette.responses import Response
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
+from arcspline.serving.refusals import REFUSED
 from arcspline.worker.pool import WorkerPool
 
 from .errors import ALL_KINDS, problem_responses
@@ -64,6 +65,21 @@ class PoolCollector(Collector):
             "Worker processes replaced (after a death or a time limit).",
             value=pool.restarts,
         )
+
+
+class RefusalCollector(Collector):
+    """The connections the serving process's bounds refused (``serving/refusals.py``)."""
+
+    def collect(self) -> Iterator[Metric]:
+        family = CounterMetricFamily(
+            "arcspline_connections_refused",
+            "Connections refused or dropped by their bounds (header size and time, body "
+            "time, malformed HTTP, the connection cap, answers left unread), by kind.",
+            labels=["kind"],
+        )
+        for kind, count in sorted(REFUSED.items()):
+            family.add_metric([kind], count)
+        yield family
 
 
 class Metrics:
@@ -107,6 +123,7 @@ class Metrics:
         self._arcs = self.segments.labels("arc")
         self._lines = self.segments.labels("line")
         self.registry.register(PoolCollector(pool))
+        self.registry.register(RefusalCollector())
         # What prometheus_client puts on its default registry (memory, CPU, open files,
         # the Python version, garbage collections): this registry is the app's own.
         ProcessCollector(registry=self.registry)

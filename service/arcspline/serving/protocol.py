@@ -36,6 +36,8 @@ from uvicorn.protocols.http.httptools_impl import STATUS_LINE, HttpToolsProtocol
 
 from arcspline.api.errors import PROBLEM_MEDIA_TYPE, problem
 
+from .refusals import refuse
+
 log = logging.getLogger(__name__)
 
 
@@ -141,6 +143,7 @@ class BoundedHttpToolsProtocol(HttpToolsProtocol):
         self.waiting.pop(self, None)
         if self.transport.is_closing():
             return
+        refuse(kind)
         cycle = self.cycle
         answer = True
         if cycle is not None and not cycle.response_complete:
@@ -242,6 +245,7 @@ class BoundedHttpToolsProtocol(HttpToolsProtocol):
                 "a client left its answer unread for %g s; dropping the connection",
                 self.limits.send_timeout_s,
             )
+            refuse("send_timeout")
             # Not close(): that would wait for the unread buffer to be flushed.
             self.transport.abort()
 
