@@ -57,6 +57,9 @@ def log_config(level: str) -> dict[str, Any]:
 #: (exceptions with their tracebacks) wait at most 50 000 allocations.
 GC_THRESHOLDS = (50_000, 20, 100)
 
+#: Seconds uvicorn waits past the drain for the requests the app has cut to finish answering.
+DRAIN_BACKSTOP_S = 5
+
 
 def tune_gc() -> None:
     """Collect less often in the server process (the workers keep the defaults)."""
@@ -105,7 +108,9 @@ def serve(host: str | None = None, port: int | None = None) -> None:
         access_log=settings.access_log,
         log_level=settings.log_level,
         log_config=log_config(settings.log_level),
-        timeout_graceful_shutdown=settings.drain_timeout_s,
+        # The app ends the drain itself at drain_timeout_s (api/lifecycle.py), answering 503;
+        # uvicorn's own cut (an ERROR line, text/plain 500s) is only a backstop.
+        timeout_graceful_shutdown=settings.drain_timeout_s + DRAIN_BACKSTOP_S,
         server_header=False,
     )
 

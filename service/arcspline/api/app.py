@@ -135,8 +135,9 @@ def create_app(settings: Settings | None = None) -> FastAPI:
     app.add_middleware(Compression, minimum_size=1024, compresslevel=1)
     # Outside gzip (which holds a start message back), inside the metrics (which count its 499s).
     app.add_middleware(
-        LifecycleMiddleware, retry_after_s=runtime.settings.retry_after_s, metrics=runtime.metrics
-    )
+        LifecycleMiddleware, retry_after_s=runtime.settings.retry_after_s,
+        metrics=runtime.metrics, drain_timeout_s=runtime.settings.drain_timeout_s,
+    )  # fmt: skip
     app.add_middleware(
         BodyLimitMiddleware, max_body_bytes=runtime.settings.max_body_bytes, metrics=runtime.metrics
     )

@@ -8,13 +8,16 @@ docs/http-api.md, "Cancellation, drain and fairness").
   work no other request waits for. Nothing is sent (no one would read it); the request is
   counted with status 499, nginx's "client closed request".
 - **A request still running when the drain ends is answered 503.** On SIGTERM or SIGINT
-  uvicorn stops accepting, waits ``ARCSPLINE_DRAIN_TIMEOUT_S`` for the requests in flight,
-  then cancels them, and answers each with a text/plain 500 and a traceback in the log.
-  Here such a request is answered ``503 shutting_down`` with ``Retry-After`` (another
-  replica can take it), and one line counts them. The app hears of the drain from the
-  signal: uvicorn tells an app nothing before ``lifespan.shutdown``, which comes after it has
-  cancelled the requests. Without the signal (the app in this process, say, behind the
-  command line's in-process transport) a cancellation is the caller's, and goes on.
+  uvicorn stops accepting and waits for the requests in flight; past its graceful timeout it
+  cancels them (an ERROR line), and answers each with a text/plain 500 and a traceback in
+  the log. Here the drain ends first: ``ARCSPLINE_DRAIN_TIMEOUT_S`` after the signal, the
+  requests still running are cancelled and answered ``503 shutting_down`` with
+  ``Retry-After`` (another replica can take it), and one line counts them; uvicorn's timeout
+  is a few seconds longer (``__main__.DRAIN_BACKSTOP_S``), a backstop that is not reached.
+  The app hears of the drain from the signal: uvicorn tells an app nothing before
+  ``lifespan.shutdown``, which comes after it has cancelled the requests. Without the
+  signal (the app in this process, say, behind the command line's in-process transport) a
+  cancellation is the caller's, and goes on.
 """
 
 from __future__ import annotations
@@ -45,10 +48,16 @@ _DRAIN_SIGNALS = (signal.SIGINT, signal.SIGTERM)
 class LifecycleMiddleware:
     """Cancels a request whose client has gone; answers 503 to one the drain cuts."""
 
-    def __init__(self, app: ASGIApp, retry_after_s: int, metrics: Metrics) -> None:
+    def __init__(
+        self, app: ASGIApp, retry_after_s: int, metrics: Metrics, drain_timeout_s: float
+    ) -> None:
         self.app = app
         self.retry_after_s = retry_after_s
         self.metrics = metrics
+        self.drain_timeout_s = drain_timeout_s
+        #: The requests in the app now: those the drain cuts when it ends.
+        self.running: set[_Request] = set()
+        self._loop: asyncio.AbstractEventLoop | None = None
         #: Set by SIGTERM or SIGINT: a request cancelled from now on is cut by the drain.
         self.draining = False
         #: Requests cut by the drain, not yet logged.
@@ -73,6 +82,7 @@ class LifecycleMiddleware:
                 self._summarise()
             await send(message)
 
+        self._loop = asyncio.get_running_loop()
         self._hear_drain_signals()
         try:
             await self.app(scope, receive, send_and_summarise)
@@ -92,8 +102,21 @@ class LifecycleMiddleware:
                 signal.signal(signum, self._on_drain_signal)
 
     def _on_drain_signal(self, signum: int, frame: FrameType | None) -> None:
+        if not self.draining and self._loop is not None:
+            # The handler runs between two bytecodes of the loop's thread: the loop is told
+            # through its self-pipe, as from another thread.
+            self._loop.call_soon_threadsafe(self._end_drain_later)
         self.draining = True
         self._previous_handlers[signum](signum, frame)
+
+    def _end_drain_later(self) -> None:
+        assert self._loop is not None
+        self._loop.call_later(self.drain_timeout_s, self._end_drain)
+
+    def _end_drain(self) -> None:
+        """The drain's time is up: cancel what still runs (each answers 503 itself)."""
+        for request in list(self.running):
+            request.task.cancel()
 
     def _restore_handlers(self) -> None:
         for signum, previous in self._previous_handlers.items():
@@ -146,6 +169,7 @@ class _Request:
         self.watcher: asyncio.Task[None] | None = None
 
     async def run(self) -> None:
+        self.lifecycle.running.add(self)
         try:
             await self.lifecycle.app(self.scope, self._receive, self._send)
         except asyncio.CancelledError:
@@ -161,6 +185,7 @@ class _Request:
             # Else the answer is cut short: uvicorn closes the connection (the client sees
             # a body shorter than announced, or a stream without its end).
         finally:
+            self.lifecycle.running.discard(self)
             if self.timer is not None:
                 self.timer.cancel()
             if self.watcher is not None:
