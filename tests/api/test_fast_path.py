@@ -13,7 +13,6 @@ import httpx
 import pytest
 from fastapi import FastAPI
 
-from arcspline.api import fast_path
 from arcspline.api.fast_path import Allowance, inline_limits, run_inline
 from arcspline.api.schemas import ApproximateRequest
 from arcspline.api.translate import to_job
@@ -80,8 +79,7 @@ POOL_REQUESTS = {
 def unlimited(app: FastAPI) -> None:
     """No share of time for inline jobs to exhaust: which path a job takes here depends on
     the job alone, not on how fast this machine runs the tests."""
-    pool = app.state.runtime.pool
-    fast_path._allowances[pool] = Allowance(share=1.0, burst_s=math.inf)
+    app.state.runtime.inline_allowance = Allowance(share=1.0, burst_s=math.inf)
 
 
 @pytest.fixture(scope="module")
@@ -181,12 +179,14 @@ def job_of(body: dict[str, Any]) -> Job:
 
 
 def ready_pool() -> WorkerPool:
-    """A pool that admits (no workers: the fast path never sends it anything), with no
-    share of time to exhaust."""
+    """A pool that admits (no workers: the fast path never sends it anything)."""
     pool = WorkerPool(1, 4, start_method="spawn")
     pool.state = "ready"
-    fast_path._allowances[pool] = Allowance(share=1.0, burst_s=math.inf)
     return pool
+
+
+#: No share of time to exhaust.
+UNLIMITED = Allowance(share=1.0, burst_s=math.inf)
 
 
 def test_a_job_over_the_inline_count_is_handed_back_uncomputed() -> None:
@@ -194,8 +194,8 @@ def test_a_job_over_the_inline_count_is_handed_back_uncomputed() -> None:
     configured limit (under which it fits)."""
     settings = Settings(**TEST_SETTINGS, inline_max_segments=INLINE_MAX_SEGMENTS)
     pool = ready_pool()
-    assert run_inline(job_of(spiral(1e-6)), settings, pool) is None
-    small = run_inline(job_of(spiral(1e-3)), settings, pool)
+    assert run_inline(job_of(spiral(1e-6)), settings, pool, UNLIMITED) is None
+    small = run_inline(job_of(spiral(1e-3)), settings, pool, UNLIMITED)
     assert small == approximate_one(job_of(spiral(1e-3)), settings.limits)
     assert pool.in_flight == 0
 
@@ -205,7 +205,7 @@ def test_a_job_over_the_configured_limit_is_refused_inline_as_in_the_pool() -> N
     final answer, worded with the configured limit as the pool's."""
     settings = Settings(**TEST_SETTINGS, inline_max_segments=INLINE_MAX_SEGMENTS, max_segments=40)
     job = job_of(spiral(1e-5))
-    refused = run_inline(job, settings, ready_pool())
+    refused = run_inline(job, settings, ready_pool(), UNLIMITED)
     expected = approximate_one(job, settings.limits)
     assert isinstance(refused, GeometryError)
     assert isinstance(expected, GeometryError)
@@ -230,9 +230,8 @@ def test_inline_jobs_take_at_most_their_share_of_time() -> None:
 
 def test_an_exhausted_share_sends_small_jobs_to_the_pool() -> None:
     settings = Settings(**TEST_SETTINGS, inline_max_segments=INLINE_MAX_SEGMENTS)
-    pool = ready_pool()
-    fast_path._allowances[pool] = Allowance(share=0.0, burst_s=0.0)
-    assert run_inline(job_of(spiral(1e-3)), settings, pool) is None
+    exhausted = Allowance(share=0.0, burst_s=0.0)
+    assert run_inline(job_of(spiral(1e-3)), settings, ready_pool(), exhausted) is None
 
 
 def test_inline_limits() -> None:

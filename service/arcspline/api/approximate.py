@@ -50,7 +50,7 @@ async def approximate(body: ApproximateRequest, request: Request) -> Response:
             stem="spiral", output=output, problem_of=lambda error: job_problem(error, ["body"]),
         )  # fmt: skip
     singles = runtime.singles()
-    result = run_inline(job, runtime.settings, singles.pool)
+    result = run_inline(job, runtime.settings, singles.pool, runtime.inline_allowance)
     if result is None:
         # Jobs that arrive while every worker is busy share a worker task (see Coalescer).
         result = await singles.run(job)

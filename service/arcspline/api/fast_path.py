@@ -26,7 +26,6 @@ bounded by the segment count cheaply.
 from __future__ import annotations
 
 import time
-import weakref
 from functools import lru_cache
 
 from arcspline.geometry import GeometryError, Limits
@@ -67,10 +66,6 @@ class Allowance:
         self.left_s -= used_s
 
 
-#: Each pool's (so each app's) allowance.
-_allowances: weakref.WeakKeyDictionary[WorkerPool, Allowance] = weakref.WeakKeyDictionary()
-
-
 @lru_cache(maxsize=16)
 def inline_limits(settings: Settings) -> Limits | None:
     """The core's limits for an inline job, or ``None`` when the fast path is off."""
@@ -85,16 +80,16 @@ def is_inline_candidate(job: Job) -> bool:
     return not job.outputs and job.strategy in INLINE_STRATEGIES
 
 
-def run_inline(job: Job, settings: Settings, pool: WorkerPool) -> JobResult | None:
+def run_inline(
+    job: Job, settings: Settings, pool: WorkerPool, allowance: Allowance
+) -> JobResult | None:
     """``job``'s result computed here, or ``None`` to send it to the pool: if it is not
-    provably tiny, or inline jobs have taken their share of late. Admitted by ``pool`` as a
-    pool job is, so a full queue or a stopped service answers as it would (503)."""
+    provably tiny, or inline jobs have taken their share of late (``allowance``: the app's,
+    ``Runtime.inline_allowance``). Admitted by ``pool`` as a pool job is, so a full queue
+    or a stopped service answers as it would (503)."""
     limits = inline_limits(settings)
     if limits is None or not is_inline_candidate(job):
         return None
-    allowance = _allowances.get(pool)
-    if allowance is None:
-        allowance = _allowances[pool] = Allowance()
     began = time.perf_counter()
     if not allowance.open(began):
         return None  # under load: the pool's coalesced tasks cost this process less

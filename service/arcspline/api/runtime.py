@@ -12,6 +12,7 @@ from arcspline.settings import Settings
 from arcspline.worker.jobs import Job, JobResult
 from arcspline.worker.pool import Coalescer, PoolUnavailableError, WorkerPool
 
+from .fast_path import Allowance
 from .metrics import Metrics
 
 
@@ -26,6 +27,8 @@ class Runtime:
     #: JSON batch answers computed or sent at once: each holds up to the work budget
     #: (docs/deployment.md, "Memory"); two keep both workers busy while one is sent.
     json_answers: asyncio.Semaphore = field(default_factory=lambda: asyncio.Semaphore(2))
+    #: The serving process's time left for small jobs computed in it (.fast_path).
+    inline_allowance: Allowance = field(default_factory=Allowance)
 
     def __post_init__(self) -> None:
         self.metrics = Metrics(lambda: self.pool)
