@@ -4,14 +4,12 @@ queue behind batches (docs/http-api.md, "Cancellation, drain and fairness")."""
 from __future__ import annotations
 
 import asyncio
-import time
-from collections.abc import Awaitable, Callable
 from pathlib import Path
 
 import httpx
 import pytest
 
-from arcspline.settings import Settings
+from tests.integration.workloads import CLIENT_TIMEOUT_S, HEAVY, ROOM, SPIRAL, until
 from tests.support.server import Server, parse_metrics, running_server
 
 pytestmark = [
@@ -20,28 +18,8 @@ pytestmark = [
     pytest.mark.anyio,
 ]
 
-SPIRAL = {
-    "start": [1.5, 3.0],
-    "start_tangent": [1.0, 0.0],
-    "turn_angle_deg": 51.34,
-    "end_curvature": 0.41574,
-}
-#: About 30 ms of a worker's time (a thousand arcs and their G-code).
-HEAVY = {"spiral": SPIRAL, "tolerance": 1e-9, "gcode": {"feed_rate": 1000, "decimals": 6}}
 #: A single job that goes to a worker (its G-code is written there).
 SINGLE = {"spiral": SPIRAL, "tolerance": 1e-3, "gcode": {"feed_rate": 1000}}
-#: Room for batches of seconds of work: the batch work budget (ARCSPLINE_BATCH_MAX_SEGMENTS)
-#: would stop them at a fraction of that.
-ROOM = {"batch_max_segments": 10**7} if "batch_max_segments" in Settings.model_fields else {}
-#: Hang guard for every request and wait: far beyond any answer's time.
-CLIENT_TIMEOUT_S = 120.0
-
-
-async def _until(condition: Callable[[], Awaitable[bool]], timeout_s: float = 60.0) -> None:
-    deadline = time.monotonic() + timeout_s
-    while not await condition():
-        assert time.monotonic() < deadline, "condition not reached in time"
-        await asyncio.sleep(0.01)
 
 
 def _client(server: Server) -> httpx.AsyncClient:
@@ -65,7 +43,7 @@ async def test_a_client_that_disconnects_cancels_its_batch(tmp_path: Path) -> No
                 batch = asyncio.create_task(
                     leaving.post("/v1/approximate/batch", json={"jobs": [HEAVY] * 200})
                 )
-                await _until(running)
+                await until(running)
                 batch.cancel()  # and the client closes its connection
             with pytest.raises(asyncio.CancelledError):
                 await batch
@@ -80,7 +58,7 @@ async def test_a_client_that_disconnects_cancels_its_batch(tmp_path: Path) -> No
 
             # The worker computing the chunk no one awaits is killed (and replaced); left
             # alone it would finish the chunk and never be replaced.
-            await _until(freed)
+            await until(freed)
             after = await observer.post("/v1/approximate", json=SINGLE)
             assert after.status_code == 200
             metrics = await _metrics(observer)
@@ -107,7 +85,7 @@ async def test_a_single_request_goes_before_a_batch_queued_ahead_of_it(tmp_path:
                 m = await _metrics(client)
                 return m["arcspline_pool_running"] == 1 and m["arcspline_pool_queue_depth"] >= 1
 
-            await _until(one_queued)
+            await until(one_queued)
             single = await client.post("/v1/approximate", json=SINGLE)
             after_single = await _metrics(client)
             responses = await asyncio.gather(*batches)

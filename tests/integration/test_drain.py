@@ -5,14 +5,12 @@ from __future__ import annotations
 
 import asyncio
 import signal
-import time
-from collections.abc import Awaitable, Callable
 from pathlib import Path
 
 import httpx
 import pytest
 
-from arcspline.settings import Settings
+from tests.integration.workloads import CLIENT_TIMEOUT_S, HEAVY, ROOM, until
 from tests.support.server import parse_metrics, running_server
 
 pytestmark = [
@@ -20,27 +18,6 @@ pytestmark = [
     pytest.mark.xdist_group("integration"),
     pytest.mark.anyio,
 ]
-
-SPIRAL = {
-    "start": [1.5, 3.0],
-    "start_tangent": [1.0, 0.0],
-    "turn_angle_deg": 51.34,
-    "end_curvature": 0.41574,
-}
-#: About 30 ms of a worker's time (a thousand arcs and their G-code).
-HEAVY = {"spiral": SPIRAL, "tolerance": 1e-9, "gcode": {"feed_rate": 1000, "decimals": 6}}
-#: Room for batches of seconds of work: the batch work budget (ARCSPLINE_BATCH_MAX_SEGMENTS)
-#: would stop them at a fraction of that.
-ROOM = {"batch_max_segments": 10**7} if "batch_max_segments" in Settings.model_fields else {}
-#: Hang guard for every request and wait: far beyond any answer's time.
-CLIENT_TIMEOUT_S = 120.0
-
-
-async def _until(condition: Callable[[], Awaitable[bool]], timeout_s: float = 60.0) -> None:
-    deadline = time.monotonic() + timeout_s
-    while not await condition():
-        assert time.monotonic() < deadline, "condition not reached in time"
-        await asyncio.sleep(0.01)
 
 
 async def test_a_request_still_running_when_the_drain_ends_is_answered_503(
@@ -58,7 +35,7 @@ async def test_a_request_still_running_when_the_drain_ends_is_answered_503(
                 metrics = parse_metrics((await client.get("/metrics")).text)
                 return metrics["arcspline_pool_running"] >= 1
 
-            await _until(running)
+            await until(running)
             server.process.send_signal(signal.SIGTERM)
             response = await batch
         assert response.status_code == 503

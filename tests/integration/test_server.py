@@ -6,14 +6,13 @@ from __future__ import annotations
 import asyncio
 import os
 import signal
-import time
-from collections.abc import Awaitable, Callable
 from pathlib import Path
 from typing import Any
 
 import httpx
 import pytest
 
+from tests.integration.workloads import CLIENT_TIMEOUT_S, HEAVY, SPIRAL, until
 from tests.support.server import Server, parse_metrics, running_server
 
 pytestmark = [
@@ -21,18 +20,6 @@ pytestmark = [
     pytest.mark.xdist_group("integration"),
     pytest.mark.anyio,
 ]
-
-SPIRAL = {
-    "start": [1.5, 3.0],
-    "start_tangent": [1.0, 0.0],
-    "turn_angle_deg": 51.34,
-    "end_curvature": 0.41574,
-}
-#: A request that keeps a worker busy for tens of milliseconds (about a thousand arcs and
-#: their G-code), so that a burst of them outruns the client and work piles up.
-HEAVY = {"spiral": SPIRAL, "tolerance": 1e-9, "gcode": {"feed_rate": 1000, "decimals": 6}}
-#: Hang guard for every request: far beyond any answer's time.
-CLIENT_TIMEOUT_S = 120.0
 
 
 def _client(server: Server) -> httpx.AsyncClient:
@@ -44,14 +31,6 @@ def _same_stats(a: dict[str, Any], b: dict[str, Any]) -> bool:
     """Equal statistics, to the bit: a job's result does not depend on the jobs that share
     its worker task."""
     return a == b
-
-
-async def _until(condition: Callable[[], Awaitable[bool]], timeout_s: float = 60.0) -> None:
-    """Poll without blocking the event loop (the load runs on it too)."""
-    deadline = time.monotonic() + timeout_s
-    while not await condition():
-        assert time.monotonic() < deadline, "condition not reached in time"
-        await asyncio.sleep(0.01)
 
 
 async def _metrics(client: httpx.AsyncClient) -> dict[str, float]:
@@ -118,7 +97,7 @@ async def test_killing_a_worker_during_a_burst(server: Server) -> None:
         async def under_way() -> bool:
             return (await _metrics(client))["arcspline_pool_in_flight"] >= 8
 
-        await _until(under_way)
+        await until(under_way)
         os.kill(workers[0], signal.SIGKILL)
         responses = await asyncio.wait_for(asyncio.gather(*burst), CLIENT_TIMEOUT_S)
         statuses = [r.status_code for r in responses]
@@ -129,7 +108,7 @@ async def test_killing_a_worker_during_a_burst(server: Server) -> None:
                 assert _same_stats(response.json()["stats"], expected)
             else:
                 assert response.headers["content-type"] == "application/problem+json"
-        await _until(lambda: _ready(client))
+        await until(lambda: _ready(client))
         assert (await _metrics(client))["arcspline_pool_worker_restarts_total"] > rebuilds_before
         assert workers[0] not in server.worker_pids()
         after = await client.post("/v1/approximate", json=HEAVY)
@@ -150,7 +129,7 @@ async def test_sigterm_drains_in_flight_requests_and_exits_0(tmp_path: Path) -> 
                 done = m.get("arcspline_jobs_total{endpoint=approximate,outcome=ok}", 0.0)
                 return m["arcspline_pool_in_flight"] + done == requests
 
-            await _until(all_admitted)
+            await until(all_admitted)
             in_flight = (await _metrics(client))["arcspline_pool_in_flight"]
             assert in_flight > 0, "the load ended before the signal"
             server.process.send_signal(signal.SIGTERM)
@@ -181,7 +160,7 @@ async def test_a_job_past_its_time_limit_is_a_504_and_the_pool_recovers(tmp_path
             response = await client.post("/v1/approximate", json=HEAVY)
             assert response.status_code == 504
             assert response.json()["type"].endswith(":time-limit")
-            await _until(lambda: _ready(client))
+            await until(lambda: _ready(client))
             metrics = await _metrics(client)
             assert metrics["arcspline_pool_worker_restarts_total"] >= 1
             assert metrics["arcspline_errors_total{kind=time_limit}"] >= 1
