@@ -78,7 +78,7 @@ async def approximate_batch(body: BatchRequest, request: Request) -> Response:
     spoils nothing else. The jobs go to the workers in a few large tasks, within the batch's
     work budget — or, streamed (NDJSON), in small ones, each line sent as its task finishes.
     """
-    fixed_answer(request, BATCH_MEDIA_TYPES)
+    media_type = fixed_answer(request, BATCH_MEDIA_TYPES)
     runtime = runtime_of(request)
     settings = runtime.settings
 
@@ -90,5 +90,4 @@ async def approximate_batch(body: BatchRequest, request: Request) -> Response:
     batch = validate(
         runtime, body.jobs, make_job, approximate_chunk, settings.limits, "batch", "spiral"
     )
-    accept = request.headers.get("accept")
-    return await answer(batch, accept, settings.batch_chunk_min_jobs, STREAM_CHUNK_JOBS)
+    return await answer(batch, media_type, settings.batch_chunk_min_jobs, STREAM_CHUNK_JOBS)

@@ -21,7 +21,6 @@ from arcspline.worker.pool import PoolError
 from .batch_json import answer_json
 from .batch_stream import answer_stream
 from .errors import Loc, ProblemError, pool_problem, problem, problem_kind, validation_problem
-from .negotiation import BATCH_MEDIA_TYPES, media_type_for
 from .runtime import Runtime
 from .schemas import NDJSON_MEDIA_TYPE, OutputFormat
 from .translate import job_problem
@@ -40,11 +39,6 @@ def json_only(output: OutputFormat | None, prefix: Loc) -> None:
             "type": "json_only",
         }
         raise ProblemError(validation_problem([item], prefix))
-
-
-def wants_stream(accept: str | None) -> bool:
-    """Whether ``Accept`` ranks NDJSON above JSON (a batch's only two answers)."""
-    return media_type_for(accept, BATCH_MEDIA_TYPES) == NDJSON_MEDIA_TYPE
 
 
 @dataclass
@@ -122,10 +116,11 @@ def validate(
 
 
 async def answer(
-    batch: Batch[JobT], accept: str | None, min_chunk_jobs: int, stream_chunk_jobs: int
+    batch: Batch[JobT], media_type: str, min_chunk_jobs: int, stream_chunk_jobs: int
 ) -> Response:
-    """The batch's answer as ``accept`` asks: NDJSON in chunks of ``stream_chunk_jobs``, or
-    one JSON document in as few chunks of at least ``min_chunk_jobs`` as the workers allow."""
-    if wants_stream(accept):
+    """The batch's answer in ``media_type`` (the route's negotiated one, ``fixed_answer``):
+    NDJSON in chunks of ``stream_chunk_jobs``, or one JSON document in as few chunks of at
+    least ``min_chunk_jobs`` as the workers allow."""
+    if media_type == NDJSON_MEDIA_TYPE:
         return answer_stream(batch, stream_chunk_jobs)
     return await answer_json(batch, min_chunk_jobs)

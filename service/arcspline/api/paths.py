@@ -81,7 +81,7 @@ async def approximate_path(body: PathRequest, request: Request) -> Response:
 async def approximate_paths_batch(body: PathBatchRequest, request: Request) -> Response:
     """One result per job, in order: ``ok`` with the body of /v1/paths/approximate, or
     ``error``; a bad job spoils nothing else."""
-    fixed_answer(request, BATCH_MEDIA_TYPES)
+    media_type = fixed_answer(request, BATCH_MEDIA_TYPES)
     runtime = runtime_of(request)
     settings = runtime.settings
 
@@ -96,7 +96,7 @@ async def approximate_paths_batch(body: PathBatchRequest, request: Request) -> R
     )  # fmt: skip
     # A path is one compiled loop already: each chunk a job, as the pool allows (streamed:
     # each path alone).
-    return await answer(batch, request.headers.get("accept"), 1, 1)
+    return await answer(batch, media_type, 1, 1)
 
 
 @router.post(
