@@ -11,7 +11,7 @@ from typing import Any
 
 import httpx
 
-from tests.support.processes import parents
+from tests.support.processes import memory_kib, parents
 from tests.support.server import running_server
 
 SPIRAL: dict[str, Any] = {
@@ -32,25 +32,12 @@ MAX_HEALTHZ_S = 1.0
 
 
 def _rss_mib(pid: int) -> float:
-    try:
-        for line in Path(f"/proc/{pid}/status").read_text().splitlines():
-            if line.startswith("VmRSS:"):
-                return int(line.split()[1]) / 1024
-    except OSError:
-        pass
-    return 0.0
+    return (memory_kib(pid, "VmRSS") or 0) / 1024
 
 
 def _pss_mib(pid: int) -> float:
-    """Proportional set size: each shared page split among its processes, as the pod's
-    memory cgroup charges it once."""
-    try:
-        for line in Path(f"/proc/{pid}/smaps_rollup").read_text().splitlines():
-            if line.startswith("Pss:"):
-                return int(line.split()[1]) / 1024
-    except OSError:
-        pass
-    return 0.0
+    """Proportional set size, as the pod's memory cgroup charges the tree."""
+    return (memory_kib(pid, "Pss") or 0) / 1024
 
 
 def _tree(pid: int) -> set[int]:

@@ -4,11 +4,11 @@ attacks of the connection tests are not HTTP that a client library would send.""
 from __future__ import annotations
 
 import socket
-from pathlib import Path
 from typing import Any
 
 import orjson
 
+from tests.support.processes import memory_kib
 from tests.support.server import Server
 
 #: Hang guard of every socket read: far beyond any answer's time.
@@ -57,8 +57,7 @@ def problem_of(raw: bytes) -> tuple[int, dict[str, str], dict[str, Any]]:
 
 
 def vm_kib(pid: int, field: str) -> int:
-    """``VmRSS`` or ``VmHWM`` (peak) of a process, in KiB, from /proc/<pid>/status."""
-    for line in Path(f"/proc/{pid}/status").read_text().splitlines():
-        if line.startswith(field + ":"):
-            return int(line.split()[1])
-    raise AssertionError(f"no {field} for {pid}")
+    """``VmRSS`` or ``VmHWM`` (peak) of a live process, in KiB."""
+    kib = memory_kib(pid, field)
+    assert kib is not None, f"no {field} for {pid}"
+    return kib

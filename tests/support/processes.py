@@ -24,3 +24,18 @@ def worker_pids(server_pid: int) -> list[int]:
     known = parents()
     children = {pid for pid, parent in known.items() if parent == server_pid}
     return sorted(pid for pid, parent in known.items() if parent in children)
+
+
+def memory_kib(pid: int, field: str) -> int | None:
+    """A memory figure of a process in KiB, ``None`` once it is gone: ``VmRSS``, ``VmHWM``
+    (the peak RSS) from ``/proc/<pid>/status``, or ``Pss`` (its shared pages split among
+    their processes, as a memory cgroup charges them) from ``/proc/<pid>/smaps_rollup``."""
+    source = "smaps_rollup" if field == "Pss" else "status"
+    try:
+        lines = Path(f"/proc/{pid}/{source}").read_text().splitlines()
+    except OSError:
+        return None
+    for line in lines:
+        if line.startswith(field + ":"):
+            return int(line.split()[1])
+    return None
