@@ -4,7 +4,9 @@ from __future__ import annotations
 
 from typing import Literal
 
-ErrorKind = Literal["invalid_input", "tolerance_floor", "segment_limit", "precision"]
+ErrorKind = Literal[
+    "invalid_input", "tolerance_floor", "segment_limit", "precision", "crossing", "tool_too_large"
+]
 
 
 class GeometryError(ValueError):
