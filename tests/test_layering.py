@@ -20,6 +20,7 @@ LAYERS = {
     "outputs": ("arcspline.geometry", "arcspline.outputs"),
     "paths": ("arcspline.geometry", "arcspline.paths"),
     "drawings": ("arcspline.geometry", "arcspline.paths", "arcspline.drawings"),
+    "machining": ("arcspline.geometry", "arcspline.outputs", "arcspline.machining"),
 }
 ALLOWED_THIRD_PARTY = {"numpy"}
 #: The document libraries, each allowed only in the layer that reads or writes documents.

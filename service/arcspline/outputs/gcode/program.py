@@ -118,7 +118,12 @@ def write_parts(parts: Sequence[Part], options: GcodeOptions) -> str:
     if not parts or any(len(spline) == 0 for spline, _ in parts):
         raise GcodeError("spiral", "the arc spline has no segments")
     plans = [plan_program(spline, curve, options) for spline, curve in parts]
-    lines = list(_text(plans, parts, options))
+    return numbered(list(_text(plans, parts, options)), options)
+
+
+def numbered(lines: list[str], options: GcodeOptions) -> str:
+    """The program's text: with ``line_numbers``, ``N10``, ``N20``, … (``N1``, ``N2``, … when
+    tens would pass :data:`MAX_LINE_NUMBER`) on every line but comments."""
     if options.line_numbers:
         coded = [k for k, text in enumerate(lines) if not text.startswith("(")]
         step = 10 if 10 * len(coded) <= MAX_LINE_NUMBER else 1
