@@ -4,7 +4,9 @@ numbered, zoomable group per toolpath in cutting order, one dashed rapid per too
 scale bar of a round length that is as long as it says, and a bounded number of samples.
 
 The picture's map from drawing to pixels is recovered from the picture itself (the start
-points of two toolpaths), so the checks do not use the module's frame.
+points of two toolpaths), so the checks do not use the module's frame. Tool-centre paths
+add the part's contours and the swept band, the tool's diameter wide at the picture's scale
+(recovered from a contour's radius in pixels).
 """
 
 from __future__ import annotations
@@ -17,7 +19,14 @@ import numpy as np
 import pytest
 
 import arcspline
-from arcspline.outputs.drawing_preview import DEVIATION_SAMPLES, corners, render_drawing
+from arcspline.outputs import WRITERS
+from arcspline.outputs.drawing_preview import (
+    DEVIATION_SAMPLES,
+    PreviewOptions,
+    ToolView,
+    corners,
+    render_drawing,
+)
 from arcspline.outputs.part import Part
 
 from .test_dxf import parts_of
@@ -186,3 +195,67 @@ def test_an_empty_drawing_still_draws() -> None:
     root = picture([])
     assert root.tag == f"{SVG}svg"
     assert not [t for t in root.iter(f"{SVG}text") if t.get("class") == "number"]
+
+
+# -- tool-centre paths: the contours and the swept band ---------------------------------------
+
+TOOL_CIRCLE = "M 12 0 A 12 12 0 0 1 -12 0 A 12 12 0 0 1 12 0 Z"
+INNER_CIRCLE = "M 8 0 A 8 8 0 0 1 -8 0 A 8 8 0 0 1 8 0 Z"
+
+
+def groups(root: ET.Element) -> dict[str, ET.Element]:
+    return {g.get("class", ""): g for g in root.iter(f"{SVG}g") if g.get("class")}
+
+
+def arc_radii(d: str) -> list[float]:
+    return [float(r) for r in re.findall(r"A([\d.e+-]+),", d)]
+
+
+def test_a_tool_view_draws_the_contour_and_a_band_of_the_tools_diameter() -> None:
+    contour = parts(CIRCLE)[0][0]
+    view = ToolView((contour,), 4.0, "offset 2 outside")
+    root = ET.fromstring(render_drawing(parts(TOOL_CIRCLE), tool=view))
+    found = groups(root)
+    (drawn,) = [p.get("d", "") for p in found["contours"]]
+    (band,) = [p.get("d", "") for p in found["swept"]]
+    # The picture's scale from the contour (radius 10) drawn as arcs; the band is the tool
+    # path itself (radius 12), stroked as wide as the tool.
+    scale = arc_radii(drawn)[0] / 10.0
+    assert arc_radii(drawn) == pytest.approx([10.0 * scale] * 2, rel=1e-5)
+    assert arc_radii(band) == pytest.approx([12.0 * scale] * 2, rel=1e-5)
+    assert band == cuts(root)[0]
+    assert float(found["swept"].get("stroke-width", "")) == pytest.approx(4.0 * scale, rel=1e-5)
+    assert found["swept"].get("stroke-linecap") == found["swept"].get("stroke-linejoin") == "round"
+    assert 0 < float(found["swept"].get("stroke-opacity", "")) < 1
+    assert found["contours"].get("stroke") != found["swept"].get("stroke")
+    legend = " ".join(t.text or "" for t in root.iter(f"{SVG}text"))
+    assert "offset 2 outside" in legend
+    assert "swept width 4 mm" in legend
+
+
+def test_the_frame_holds_contours_larger_than_the_tool_paths() -> None:
+    contour = parts(CIRCLE)[0][0]
+    view = ToolView((contour,), 4.0, "offset 2 inside")
+    root = ET.fromstring(render_drawing(parts(INNER_CIRCLE), tool=view))
+    width, height = float(root.get("width", "")), float(root.get("height", ""))
+    (drawn,) = [p.get("d", "") for p in groups(root)["contours"]]
+    # The contour's leftmost and rightmost points (its arcs' ends) and its radius in pixels.
+    xy = np.array(re.findall(r"([-\d.]+),([-\d.]+)", drawn), dtype=float)
+    radius_px = arc_radii(drawn)[0]
+    left, right = xy[:, 0].min(), xy[:, 0].max()
+    assert right - left == pytest.approx(2 * radius_px, rel=1e-4)
+    top = xy[:, 1].mean() - radius_px
+    bottom = xy[:, 1].mean() + radius_px
+    assert 0 <= left < right <= width
+    assert 0 <= top < bottom <= height
+
+
+def test_the_writer_takes_preview_options() -> None:
+    contour = parts(CIRCLE)[0][0]
+    options = PreviewOptions("inch", ToolView((contour,), 0.25, "tool ⌀0.25"))
+    text = WRITERS["drawing-preview"].write(parts(TOOL_CIRCLE), options)
+    assert "swept width 0.25 inch" in text
+    assert "tool ⌀0.25" in text
+    plain = WRITERS["drawing-preview"].write(parts(TOOL_CIRCLE), "inch")
+    assert 'class="swept"' not in plain
+    assert 'class="contours"' not in plain

@@ -16,12 +16,17 @@ from .contract import OUTPUT_PARAMETER
 from .drawing_outputs import DOCUMENT_MEDIA_TYPES
 from .drawing_schemas import MAX_LAYER_NAME, MAX_LAYERS, DrawingRequest, DxfRequest
 from .negotiation import unknown_parameters
+from .offset_query import TOOL_PARAMETERS, query_loc, tool_field, tool_fields
 from .schemas import MAX_BODY_BYTES, GcodeRequest
 
 #: Query parameters of a raw document: the request's fields, and the G-code options.
 _GCODE_FIELDS = frozenset(GcodeRequest.model_fields) - {"units"}
 _DXF_FIELDS = frozenset(DxfRequest.model_fields)
-_FIELDS = frozenset(DrawingRequest.model_fields) - {"document", "encoding", "gcode", "dxf"}
+_FIELDS = frozenset(DrawingRequest.model_fields) - {
+    "document", "encoding", "gcode", "dxf", "offset", "machining",
+}  # fmt: skip
+#: The offset's and the machining's options, by the names of :mod:`.offset_query`.
+_TOOL_FIELDS = frozenset(TOOL_PARAMETERS)
 #: Longest query value: a number, a word or a flag fits in far less (``layers``: every name).
 QUERY_VALUE_MAX = 100
 _LAYERS_MAX = MAX_LAYERS * (MAX_LAYER_NAME + 1)
@@ -34,7 +39,7 @@ def _max_length(name: str) -> int:
 def _check_query(query: QueryParams) -> None:
     """Refuses parameters the endpoint does not take, and values longer than the contract
     says (before any is parsed)."""
-    errors = unknown_parameters(set(query) - _FIELDS - _GCODE_FIELDS - _DXF_FIELDS)
+    errors = unknown_parameters(set(query) - _FIELDS - _GCODE_FIELDS - _DXF_FIELDS - _TOOL_FIELDS)
     errors += [
         {
             "type": "string_too_long",
@@ -61,6 +66,7 @@ def from_query(query: QueryParams, media_type: str, raw: bytes) -> DrawingReques
     dxf = {k: v for k, v in query.items() if k in _DXF_FIELDS}
     if dxf:
         fields["dxf"] = dxf
+    fields |= tool_fields(query)
     fields.setdefault("format", DOCUMENT_MEDIA_TYPES.get(media_type))
     fields["document"] = base64.b64encode(raw).decode()
     fields["encoding"] = "base64"
@@ -69,7 +75,7 @@ def from_query(query: QueryParams, media_type: str, raw: bytes) -> DrawingReques
         return DrawingRequest.model_validate(fields, strict=False)
     except ValidationError as error:
         errors = error.errors(include_url=False)
-        raise RequestValidationError([{**e, "loc": ("query", *e["loc"])} for e in errors]) from None
+        raise RequestValidationError([{**e, "loc": query_loc(e["loc"])} for e in errors]) from None
 
 
 def _value_schema(model: type[BaseModel], name: str) -> dict[str, Any]:
@@ -88,6 +94,8 @@ def _query_parameter(name: str) -> dict[str, Any]:
     bounds (``layers`` as one comma-separated value)."""
     if name == "output":
         return OUTPUT_PARAMETER
+    if name in _TOOL_FIELDS:
+        return _tool_parameter(name)
     model: type[BaseModel] = (
         GcodeRequest
         if name in _GCODE_FIELDS
@@ -111,6 +119,21 @@ def _query_parameter(name: str) -> dict[str, Any]:
     return parameter
 
 
+def _tool_parameter(name: str) -> dict[str, Any]:
+    """A raw document's offset or machining option (:mod:`.offset_query`)."""
+    model, field_name, where = tool_field(name)
+    also = " (or `machining.join`, with a machining option)" if name == "join" else ""
+    description = model.model_fields[field_name].description or ""
+    return {
+        "name": name,
+        "in": "query",
+        "required": False,
+        "description": f"Only with a raw document (refused with a JSON body): `{where}`{also}. "
+        f"{description}".strip(),
+        "schema": _value_schema(model, field_name),
+    }
+
+
 #: A raw document's bytes: at most the body limit (its default here; the server's applies).
 _RAW_DOCUMENT = {
     "type": "string",
@@ -123,6 +146,7 @@ DOCUMENT_BODY: dict[str, Any] = {
         "content": {media_type: {"schema": _RAW_DOCUMENT} for media_type in DOCUMENT_MEDIA_TYPES}
     },
     "parameters": [
-        _query_parameter(name) for name in sorted(_FIELDS | _GCODE_FIELDS | _DXF_FIELDS)
+        _query_parameter(name)
+        for name in sorted(_FIELDS | _GCODE_FIELDS | _DXF_FIELDS | _TOOL_FIELDS)
     ],
 }

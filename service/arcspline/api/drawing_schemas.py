@@ -12,6 +12,15 @@ from pydantic import ConfigDict, Field, StringConstraints, model_validator
 
 from arcspline.geometry import StrategyName
 
+from .offset_schemas import (
+    BOTH_MESSAGE,
+    MACHINING_DESCRIPTION,
+    OFFSET_DESCRIPTION,
+    MachiningRequest,
+    MachiningResponse,
+    OffsetRequest,
+    OffsetResponse,
+)
 from .path_schemas import PathStatsResponse, SubpathResponse
 from .schemas import OUTPUT_DESCRIPTION, GcodeRequest, OutputFormat, RequestModel, ResponseModel
 
@@ -97,6 +106,14 @@ class DrawingRequest(RequestModel):
         default=None, description="G-code options (needed for the `gcode` output)."
     )
     dxf: DxfRequest | None = Field(default=None, description="Options of the `dxf` output.")
+    offset: OffsetRequest | None = Field(default=None, description=OFFSET_DESCRIPTION)
+    machining: MachiningRequest | None = Field(default=None, description=MACHINING_DESCRIPTION)
+
+    @model_validator(mode="after")
+    def _one_tool(self) -> DrawingRequest:
+        if self.offset is not None and self.machining is not None:
+            raise ValueError(BOTH_MESSAGE)
+        return self
 
     @model_validator(mode="after")
     def _gcode_units(self) -> DrawingRequest:
@@ -139,7 +156,8 @@ class DrawingRequest(RequestModel):
 
 
 class ToolpathResponse(SubpathResponse):
-    """A toolpath in cutting order: joined from the elements named in ``sources``."""
+    """A toolpath in cutting order: joined from the elements named in ``sources`` (a
+    tool-centre path: those of the contour it was drawn from)."""
 
     sources: list[str]
 
@@ -206,3 +224,9 @@ class DrawingResponse(ResponseModel):
     join: JoinResponse
     rapids: RapidsResponse
     gcode: str | None
+    offset: OffsetResponse | None = Field(
+        default=None, description="With an `offset`: the toolpaths are the tool-centre paths."
+    )
+    machining: MachiningResponse | None = Field(
+        default=None, description="With `machining`: the toolpaths are the tool-centre paths."
+    )

@@ -28,7 +28,7 @@ from .negotiation import answer_document, media_type_for, negotiate, query_outpu
 from .preview import SVGResponse, draw, svg_responses
 from .routing import LeanRoute, is_json, json_body, read_body
 from .runtime import runtime_of
-from .translate import drawing_problem
+from .translate import drawing_problem, tooling_of
 
 _ADAPTER: TypeAdapter[DrawingRequest] = TypeAdapter(DrawingRequest)
 
@@ -81,7 +81,8 @@ def _job(body: DrawingRequest, request: Request, outputs: tuple[Output, ...]) ->
         # Every input segment gives at least one output segment: more cannot be cut.
         max_segments=settings.drawing_max_segments,
     )
-    return DrawingJob(body.spec(content, limits), body.options(), outputs)
+    tooling = tooling_of(body, outputs, ["body"])
+    return DrawingJob(body.spec(content, limits), body.options(), outputs, tooling)
 
 
 @router.post(

@@ -51,6 +51,7 @@ KINDS: dict[str, tuple[int, str]] = {
     "tolerance_floor": (422, "Tolerance below what can be reached"),
     "segment_limit": (422, "Too many segments"),
     "precision": (422, "Beyond double precision"),
+    "tool_too_large": (422, "Tool too large"),
     "gcode": (422, "G-code cannot be written"),
     "invalid_document": (422, "Invalid document"),
     "unsupported_media_type": (415, "Unsupported media type"),
@@ -169,7 +170,7 @@ _CORE_FIELD = re.compile(r"(?P<name>[A-Za-z_]\w*)(?:\[(?P<index>\d+)\])?")
 
 def core_field_loc(field: str) -> Loc:
     """The request path of a core parameter: ``control_points[2]`` → spiral.control_points.2."""
-    if field.startswith(("path", "toolpaths")):
+    if field.startswith(("path", "toolpaths", "offset.", "machining.")):
         # path.subpaths[0].segments[3] → path.subpaths.0.segments.3 (toolpaths[2] alike)
         return [int(part) if part.isdigit() else part for part in re.findall(r"\w+", field)]
     match = _CORE_FIELD.fullmatch(field)

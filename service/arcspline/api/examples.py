@@ -55,6 +55,10 @@ DRAWING_PROGRAM_REQUEST: dict[str, Any] = {
     "gcode": {"feed_rate": 600, "safe_z": 5, "cut_z": -1},
     "output": "gcode",
 }
+DRAWING_OFFSET_REQUEST: dict[str, Any] = {
+    **DRAWING_EXAMPLE,
+    "offset": {"distance": 1.5, "side": "outside"},
+}
 
 # -- answers (the service's, see the module docstring) -------------------------------------
 
@@ -427,6 +431,163 @@ READY_ANSWER: dict[str, Any] = {
     "in_flight": 0,
     "queue_capacity": 64,
 }
+DRAWING_OFFSET_ANSWER: dict[str, Any] = {
+    "toolpaths": [
+        {
+            "closed": True,
+            "segments": [
+                {
+                    "type": "arc",
+                    "start": [3.576975052924233, 5.474341649025259],
+                    "end": [7.037743973285046, 13.45116063632178],
+                    "center": [50.72327330072302, -10.241091100241007],
+                    "radius": 49.69656190288324,
+                    "direction": "cw",
+                    "start_angle_rad": 2.819842099193151,
+                    "sweep_rad": -0.1751898438421859,
+                    "length": 8.706332919259639,
+                    "u_start": 0.0,
+                    "u_end": 1.0,
+                    "max_deviation": 0.0,
+                    "u_at_max_deviation": 0.0,
+                    "source_segment": 0,
+                },
+                {
+                    "type": "arc",
+                    "start": [7.037743973285046, 13.45116063632178],
+                    "end": [11.286263423733882, 19.633934361762982],
+                    "center": [38.46397544741846, -3.5924279084327875],
+                    "radius": 35.75041167803111,
+                    "direction": "cw",
+                    "start_angle_rad": 2.644652255350965,
+                    "sweep_rad": -0.2102243060673617,
+                    "length": 7.515605486636593,
+                    "u_start": 0.0,
+                    "u_end": 1.0,
+                    "max_deviation": 0.0,
+                    "u_at_max_deviation": 0.0,
+                    "source_segment": 1,
+                },
+            ],
+            "stats": {
+                "arc_count": 12,
+                "line_count": 1,
+                "segment_count": 13,
+                "max_deviation": 0.0,
+                "deviation_ratio": 0.0,
+                "mean_segment_deviation": 0.0,
+                "spline_length": 131.33273539619037,
+                "min_radius": 1.5,
+                "max_radius": 51.71465560318106,
+                "tolerance": 0.01,
+                "strategy": "fewest-arcs",
+                "max_deviation_segment": 0,
+                "t_at_max_deviation": 0.0,
+                "curve_length": 131.3327353961904,
+            },
+            "sources": ["path (line 1)"],
+        },
+        {
+            "closed": True,
+            "segments": [
+                {
+                    "type": "arc",
+                    "start": [37.5, 15.0],
+                    "end": [22.5, 14.999999999999998],
+                    "center": [30.0, 15.0],
+                    "radius": 7.5,
+                    "direction": "cw",
+                    "start_angle_rad": 0.0,
+                    "sweep_rad": -3.141592653589793,
+                    "length": 23.561944901923447,
+                    "u_start": 0.0,
+                    "u_end": 1.0,
+                    "max_deviation": 0.0,
+                    "u_at_max_deviation": 0.0,
+                    "source_segment": 0,
+                },
+                {
+                    "type": "arc",
+                    "start": [22.5, 14.999999999999998],
+                    "end": [37.5, 15.0],
+                    "center": [30.0, 15.0],
+                    "radius": 7.5,
+                    "direction": "cw",
+                    "start_angle_rad": -3.141592653589793,
+                    "sweep_rad": -3.141592653589793,
+                    "length": 23.561944901923447,
+                    "u_start": 0.0,
+                    "u_end": 1.0,
+                    "max_deviation": 0.0,
+                    "u_at_max_deviation": 0.0,
+                    "source_segment": 1,
+                },
+            ],
+            "stats": {
+                "arc_count": 2,
+                "line_count": 0,
+                "segment_count": 2,
+                "max_deviation": 0.0,
+                "deviation_ratio": 0.0,
+                "mean_segment_deviation": 0.0,
+                "spline_length": 47.12388980384689,
+                "min_radius": 7.5,
+                "max_radius": 7.5,
+                "tolerance": 0.01,
+                "strategy": "fewest-arcs",
+                "max_deviation_segment": 0,
+                "t_at_max_deviation": 0.0,
+                "curve_length": 47.123889803846886,
+            },
+            "sources": ["circle (line 1)"],
+        },
+    ],
+    "stats": {
+        "arc_count": 14,
+        "line_count": 1,
+        "segment_count": 15,
+        "max_deviation": 0.0,
+        "deviation_ratio": 0.0,
+        "mean_segment_deviation": 0.0,
+        "spline_length": 178.45662520003725,
+        "min_radius": 1.5,
+        "max_radius": 51.71465560318106,
+        "tolerance": 0.01,
+        "strategy": "fewest-arcs",
+        "max_deviation_segment": 0,
+        "t_at_max_deviation": 0.0,
+        "curve_length": 178.45662520003728,
+        "toolpath_count": 2,
+        "max_deviation_toolpath": 0,
+    },
+    "units": "mm",
+    "document": {
+        "units": "mm",
+        "elements_in": 2,
+        "elements_read": 2,
+        "elements_skipped": 0,
+        "warnings": [],
+    },
+    "budget": {
+        "tolerance": 0.01,
+        "curve_approximation": 0.0,
+        "snap_move": 0.0,
+        "join_gap": 0.0,
+        "fit": 0.01,
+    },
+    "join": {"tolerance": 0.001, "joins": 0},
+    "rapids": {"before": 39.644062761670135, "after": 39.644062761670135},
+    "offset": {
+        "distance": 1.5,
+        "side": "outside",
+        "contours_in": 2,
+        "paths_out": 2,
+        "origin": [0, 1],
+        "source_max_deviation": 0.00997237617564848,
+        "notes": [],
+    },
+    "gcode": None,
+}
 HEALTH_ANSWER: dict[str, Any] = {"status": "ok"}
 
 # -- as the document shows them ------------------------------------------------------------
@@ -486,9 +647,15 @@ PATH_BATCH_ANSWERS = {
 DRAWING_REQUESTS = {
     "lens-and-hole": _example("An SVG: a closed lens and a circle, 60 × 40 mm", DRAWING_EXAMPLE),
     "program": _example("The same, answered by a 2.5-D program alone", DRAWING_PROGRAM_REQUEST),
+    "offset": _example("The same, offset 1.5 mm outside", DRAWING_OFFSET_REQUEST),
 }
 DRAWING_ANSWERS = {
-    "lens-and-hole": _example("Two toolpaths in cutting order", DRAWING_ANSWER, _SHORTENED)
+    "lens-and-hole": _example("Two toolpaths in cutting order", DRAWING_ANSWER, _SHORTENED),
+    "offset": _example(
+        "The tool-centre paths, each with its contour's sources, and the offset block",
+        DRAWING_OFFSET_ANSWER,
+        _SHORTENED,
+    ),
 }
 DRAWING_PROGRAMS = {"program": _example("The drawing as one program", DRAWING_PROGRAM)}
 

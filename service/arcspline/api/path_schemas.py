@@ -9,7 +9,15 @@ from __future__ import annotations
 
 from typing import Annotated, Any, Literal
 
-from pydantic import ConfigDict, Discriminator, Field, StringConstraints, Tag, field_validator
+from pydantic import (
+    ConfigDict,
+    Discriminator,
+    Field,
+    StringConstraints,
+    Tag,
+    field_validator,
+    model_validator,
+)
 
 from arcspline.geometry import StrategyName
 from arcspline.paths import PathFromData, PathFromSegments, PathSpec
@@ -23,6 +31,15 @@ from arcspline.paths.specs import (
     SubpathForm,
 )
 
+from .offset_schemas import (
+    BOTH_MESSAGE,
+    MACHINING_DESCRIPTION,
+    OFFSET_DESCRIPTION,
+    MachiningRequest,
+    MachiningResponse,
+    OffsetRequest,
+    OffsetResponse,
+)
 from .schemas import (
     OUTPUT_DESCRIPTION,
     ArcSegmentResponse,
@@ -193,6 +210,14 @@ class PathRequest(RequestModel):
         "`gcode` output); its `units` are those of a `dxf` or `svg` output too (mm without it).",
     )
     output: OutputFormat | None = Field(default=None, description=OUTPUT_DESCRIPTION)
+    offset: OffsetRequest | None = Field(default=None, description=OFFSET_DESCRIPTION)
+    machining: MachiningRequest | None = Field(default=None, description=MACHINING_DESCRIPTION)
+
+    @model_validator(mode="after")
+    def _one_tool(self) -> PathRequest:
+        if self.offset is not None and self.machining is not None:
+            raise ValueError(BOTH_MESSAGE)
+        return self
 
     def spec(self, max_segments: int) -> PathSpec:
         """The worker's value for this path (built and checked there)."""
@@ -269,11 +294,14 @@ class SubpathResponse(ResponseModel):
 
 class PathResponse(ResponseModel):
     """One arc spline per subpath, statistics of each and of the whole path, and one G-code
-    program for the whole path if asked for."""
+    program for the whole path if asked for; with ``offset`` or ``machining`` the subpaths are
+    the tool-centre paths, and the block of the same name says what was done."""
 
     subpaths: list[SubpathResponse]
     stats: WholePathStatsResponse
     gcode: str | None
+    offset: OffsetResponse | None = None
+    machining: MachiningResponse | None = None
 
 
 class PathBatchOkResponse(ResponseModel):

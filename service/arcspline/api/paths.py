@@ -26,7 +26,7 @@ from .path_schemas import PathBatchRequest, PathBatchResponse, PathRequest, Path
 from .preview import SVGResponse, draw, svg_responses
 from .routing import LeanRoute
 from .runtime import runtime_of
-from .translate import curve_outputs, job_problem, to_path_job
+from .translate import curve_outputs, job_problem, path_preview, to_path_job
 
 router = APIRouter(tags=["paths"], route_class=LeanRoute)
 
@@ -108,10 +108,12 @@ async def approximate_paths_batch(body: PathBatchRequest, request: Request) -> R
 )
 async def preview_path(body: PathRequest, request: Request) -> SVGResponse:
     """Every subpath, its arcs with their centres, the deviation magnified (``gcode`` and
-    ``output`` ignored)."""
+    ``output`` ignored); with ``offset`` or ``machining``, the tool-centre paths in cutting
+    order over the contours, and the width the tool sweeps."""
     fixed_answer(request, (SVG_MEDIA_TYPE,))
     settings = runtime_of(request).settings
-    job = to_path_job(body, ["body"], settings.path_max_input_segments, outputs=(("svg", None),))
+    outputs = (path_preview(body),)
+    job = to_path_job(body, ["body"], settings.path_max_input_segments, outputs=outputs)
     return await draw(
         request, render, job, settings.path_limits, endpoint="paths_preview",
         problem_of=lambda error: job_problem(error, ["body"], "path"),

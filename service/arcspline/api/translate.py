@@ -8,12 +8,16 @@ from arcspline.drawings import DocumentError
 from arcspline.geometry import GeometryError
 from arcspline.outputs.gcode import GcodeError, GcodeOptions
 from arcspline.worker.jobs import Job, Output, PathJob
+from arcspline.worker.tooling import Tooling
 
 from .drawing_schemas import DrawingRequest
 from .errors import Loc, ProblemError, dotted, gcode_problem, geometry_problem, problem
 from .negotiation import writers_for
 from .path_schemas import PathRequest
 from .schemas import ApproximateRequest, GcodeRequest, OutputFormat
+
+#: What a machining program needs of the G-code options: where to retract, and to cut.
+_MACHINING_HEIGHTS = ("safe_z", "cut_z")
 
 
 def gcode_options(
@@ -62,7 +66,47 @@ def to_path_job(
     ``outputs`` (by default those of its JSON answer: the G-code program, if asked for)."""
     if outputs is None:
         outputs = curve_outputs(request, "json", prefix)
-    return PathJob(request.spec(max_segments), request.tolerance, request.strategy, outputs)
+    tooling = tooling_of(request, outputs, prefix)
+    return PathJob(
+        request.spec(max_segments), request.tolerance, request.strategy, outputs, tooling
+    )
+
+
+def tooling_of(
+    request: PathRequest | DrawingRequest, outputs: tuple[Output, ...], prefix: Loc
+) -> Tooling | None:
+    """The core's options of the request's ``offset`` or ``machining``, if any; machining
+    that writes a program (a ``gcode`` output) needs ``gcode.safe_z`` and ``gcode.cut_z``
+    (a 422 naming those missing)."""
+    if request.offset is not None:
+        return request.offset.options()
+    if request.machining is None:
+        return None
+    gcode = request.gcode
+    if gcode is not None and any(name == "gcode" for name, _ in outputs):
+        missing = [name for name in _MACHINING_HEIGHTS if getattr(gcode, name) is None]
+        items = [
+            {
+                "loc": [*prefix, "gcode", name],
+                "msg": "required with machining: the program retracts to safe_z between "
+                "contours and over tabs, and cuts at cut_z",
+                "type": "missing",
+            }
+            for name in missing
+        ]
+        if items:
+            shown = "; ".join(f"{dotted(i['loc'])}: {i['msg']}" for i in items)
+            raise ProblemError(problem("validation", shown, errors=items))
+    return request.machining.options()
+
+
+def path_preview(request: PathRequest) -> Output:
+    """The picture of a path: the approximation's (``svg``), or with an offset or machining
+    the drawing preview of the tool-centre paths, with the contours and the swept width (in
+    the program's unit, mm without one)."""
+    if request.offset is None and request.machining is None:
+        return ("svg", None)
+    return ("drawing-preview", "mm" if request.gcode is None else request.gcode.units)
 
 
 def job_problem(

@@ -21,6 +21,12 @@ deviation, its magnification: a tooltip in browsers), and a ``<view id="view-too
 frames it, so ``drawing.svg#view-toolpath-k`` opens zoomed to it. Samples of the deviation
 curves are shared out of a total budget (:data:`DEVIATION_SAMPLES`), so the picture's size
 grows with the segment count only, never with the samples.
+
+When the toolpaths are tool-centre paths (an offset or a machining plan, docs/http-api.md,
+"Offsets and machining"), a :class:`ToolView` adds the part's contours (thin, grey) and the
+width the tool sweeps: a translucent band along each tool path, the path stroked with the
+tool's diameter in drawing units with round caps and joins — exactly the union of the tool's
+discs along the path (a Minkowski sum with a disc).
 """
 
 from __future__ import annotations
@@ -52,6 +58,25 @@ BAND_FRACTION = 0.04
 DEVIATION_SAMPLES = 20000
 MIN_SAMPLES, MAX_SAMPLES = 3, 16
 TOOLPATH_COLOURS = ("#1f77b4", "#d62728", "#9467bd", "#8c564b")
+CONTOUR_COLOUR = "#999999"
+SWEPT_COLOUR, SWEPT_OPACITY = "#1f77b4", 0.18
+
+
+class ToolView(NamedTuple):
+    """What a preview of tool-centre paths adds: the part's ``contours`` (the paths the tool
+    was offset from), the ``width`` it sweeps (its diameter, drawing units), and a ``label``
+    saying the offset or the tool (``offset 3 outside``)."""
+
+    contours: tuple[ArcSpline, ...]
+    width: float
+    label: str
+
+
+class PreviewOptions(NamedTuple):
+    """The writer's options: the drawing's unit and, for tool-centre paths, the tool's view."""
+
+    units: str = "mm"
+    tool: ToolView | None = None
 
 
 class Frame(NamedTuple):
@@ -278,15 +303,38 @@ def _rapids(
     return out, total
 
 
+def _tool_view(tool: ToolView, splines: Sequence[ArcSpline], frame: Frame) -> list[str]:
+    """The contours (thin, grey) and the swept band along each tool path (see the module
+    docstring)."""
+    width_px = tool.width * frame.scale
+    out = [f'<g class="contours" fill="none" stroke="{CONTOUR_COLOUR}" stroke-width="0.8">']
+    out.extend(
+        f'<path class="contour" d="{_path_data(c, frame)}"/>' for c in tool.contours if len(c)
+    )
+    out.append(
+        f'</g><g class="swept" fill="none" stroke="{SWEPT_COLOUR}" '
+        f'stroke-opacity="{SWEPT_OPACITY:g}" stroke-width="{width_px:.6g}" '
+        'stroke-linecap="round" stroke-linejoin="round">'
+    )
+    out.extend(f'<path class="band" d="{_path_data(s, frame)}"/>' for s in splines)
+    out.append("</g>")
+    return out
+
+
 def render_drawing(
-    parts: Sequence[Part], *, units: str = "mm", start: tuple[float, float] = (0.0, 0.0)
+    parts: Sequence[Part],
+    *,
+    units: str = "mm",
+    start: tuple[float, float] = (0.0, 0.0),
+    tool: ToolView | None = None,
 ) -> str:
     """The picture described in the module docstring, as an SVG document. ``units`` names
     the drawing's units in the labels; ``start`` is where the tool is before the first
-    rapid."""
+    rapid; ``tool`` adds the contours and the swept width of tool-centre paths."""
     parts = [part for part in parts if len(part[0])]
     splines = [spline for spline, _ in parts]
-    frame = _frame(splines, Point(*start))
+    framed = splines if tool is None else [*splines, *(c for c in tool.contours if len(c))]
+    frame = _frame(framed, Point(*start))
     segments = sum(len(s) for s in splines)
     per = max(MIN_SAMPLES, min(MAX_SAMPLES, DEVIATION_SAMPLES // max(segments, 1)))
     out = [
@@ -305,6 +353,8 @@ def render_drawing(
     rapids, rapid_length = _rapids(splines, start, frame) if splines else ([], 0.0)
     out.extend(views)
     out.extend(_axes(frame, units))
+    if tool is not None:
+        out.extend(_tool_view(tool, splines, frame))
     out.extend(rapids)
     out.extend(body)
     legend = [
@@ -313,18 +363,26 @@ def render_drawing(
         "green: deviation magnified per toolpath (hover for ×M) inside the grey band "
         "±tolerance ×M; open #view-toolpath-k to zoom to toolpath k",
     ]
+    if tool is not None:
+        legend.append(
+            f"tool-centre paths ({tool.label}); grey: the part's contours; blue band: the "
+            f"swept width {tool.width:g} {units}"
+        )
     out.extend(legend_lines(legend))
     out.append("</svg>")
     return "\n".join(out)
 
 
 class DrawingPreviewWriter:
-    """The preview as an output writer; its options are the name of the drawing's unit."""
+    """The preview as an output writer; its options are the name of the drawing's unit, or
+    :class:`PreviewOptions`."""
 
     name = "drawing-preview"
     media_type = MEDIA_TYPE
 
-    def write(self, parts: Sequence[Part], options: str | None) -> str:
+    def write(self, parts: Sequence[Part], options: str | PreviewOptions | None) -> str:
+        if isinstance(options, PreviewOptions):
+            return render_drawing(parts, units=options.units, tool=options.tool)
         return render_drawing(parts, units=options or "mm")
 
 

@@ -37,6 +37,8 @@ from arcspline.outputs import WRITERS, Part
 from arcspline.outputs.gcode import GcodeError
 from arcspline.paths import PathSpec
 
+from .tooling import Tooled, Tooling, tool, write
+
 #: An output asked for: a writer's name (``arcspline.outputs.WRITERS``) and its options.
 Output = tuple[str, Any]
 
@@ -57,12 +59,14 @@ class Job(NamedTuple):
 
 class PathJob(NamedTuple):
     """One path to approximate: its spec (SVG data or the JSON form, built in the worker), a
-    tolerance, a strategy and the outputs asked for (one document for the whole path)."""
+    tolerance, a strategy, the outputs asked for (one document for the whole path), and the
+    offset or machining that turns it into tool-centre paths (:mod:`.tooling`), if any."""
 
     path: PathSpec
     tolerance: float
     strategy: StrategyName = "subdivide"
     outputs: tuple[Output, ...] = ()
+    tooling: Tooling | None = None
 
 
 class Encoded(NamedTuple):
@@ -218,11 +222,15 @@ def path_body(result: PathSpline) -> tuple[list[dict[str, Any]], dict[str, Any],
     return subpaths, overall, nulls
 
 
-def encode_path(result: PathSpline, outputs: dict[str, str]) -> Encoded | GeometryError:
+def encode_path(
+    result: PathSpline, outputs: dict[str, str], tooled: Tooled | None = None
+) -> Encoded | GeometryError:
     """The ``PathResponse`` body: per subpath its segments and statistics, the statistics of
-    the whole path, and the written ``outputs``."""
+    the whole path, the written ``outputs`` and, for tool-centre paths, the ``offset`` or
+    ``machining`` block."""
     subpaths, overall, nulls = path_body(result)
-    head = orjson.dumps({"subpaths": subpaths, "stats": overall})
+    block = {} if tooled is None else tooled.block
+    head = orjson.dumps({"subpaths": subpaths, "stats": overall, **block})
     s = result.stats
     return finite_body(head, nulls, outputs, s.arc_count, s.line_count)
 
@@ -236,10 +244,13 @@ _NOT_FINITE = GeometryError(
 )
 
 
-def write_outputs(outputs: tuple[Output, ...], parts: list[Part]) -> dict[str, str] | GcodeError:
-    """Every output asked for, by writer name, or the first writer's refusal."""
+def write_outputs(
+    outputs: tuple[Output, ...], parts: list[Part], tooled: Tooled | None = None
+) -> dict[str, str] | GcodeError:
+    """Every output asked for, by writer name, or the first writer's refusal (of
+    ``tooled``'s tool-centre paths: see :func:`.tooling.write`)."""
     try:
-        return {name: WRITERS[name].write(parts, options) for name, options in outputs}
+        return {name: write(name, options, parts, tooled) for name, options in outputs}
     except GcodeError as error:
         return error
 
@@ -286,24 +297,42 @@ def approximate_chunk(jobs: Sequence[Job], limits: Limits) -> list[JobResult]:
     return done
 
 
-def _parts(job: Job | PathJob, limits: Limits) -> tuple[list[Part], PathSpline | None]:
-    """The job's approximation as writer parts (and, for a path, its whole result)."""
+class _Cut(NamedTuple):
+    """A job's approximation as writer parts, and for a path its whole result and its
+    tool-centre paths (when asked: the parts are theirs)."""
+
+    parts: list[Part]
+    result: PathSpline | None = None
+    tooled: Tooled | None = None
+
+
+def _subpath_name(i: int) -> str:
+    return f"path.subpaths[{i}]"
+
+
+def _parts(job: Job | PathJob, limits: Limits) -> _Cut:
+    """The job's approximation (see :class:`_Cut`)."""
     if isinstance(job, PathJob):
         result = approximate_path(job.path.build(), job.tolerance, job.strategy, limits)
-        return [(s.spline, s.curve) for s in result.subpaths], result
+        if job.tooling is not None:
+            tooled = tool(result, job.tooling, limits, _subpath_name)
+            return _Cut(tooled.parts(), tooled.spline, tooled)
+        return _Cut([(s.spline, s.curve) for s in result.subpaths], result)
     curve = job.curve.build()
-    return [(approximate(curve, job.tolerance, job.strategy, limits), curve)], None
+    return _Cut([(approximate(curve, job.tolerance, job.strategy, limits), curve)])
 
 
 def approximate_path_one(job: PathJob, limits: Limits) -> JobResult:
     """One path: the encoded ``PathResponse``, or the error that names the offending field."""
     try:
-        parts, result = _parts(job, limits)
+        cut = _parts(job, limits)
     except GeometryError as error:
         return error
-    assert result is not None
-    outputs = write_outputs(job.outputs, parts)
-    return outputs if isinstance(outputs, GcodeError) else encode_path(result, outputs)
+    assert cut.result is not None
+    outputs = write_outputs(job.outputs, cut.parts, cut.tooled)
+    if isinstance(outputs, GcodeError):
+        return outputs
+    return encode_path(cut.result, outputs, cut.tooled)
 
 
 def approximate_path_chunk(jobs: Sequence[PathJob], limits: Limits) -> list[JobResult]:
@@ -383,10 +412,10 @@ def _capped(limits: Limits, max_segments: int) -> Limits:
 def render(job: Job | PathJob, limits: Limits) -> Document | GeometryError | GcodeError:
     """The job's first output as a document of its own (no JSON around it)."""
     try:
-        parts, _ = _parts(job, limits)
+        cut = _parts(job, limits)
         (name, options), *_ = job.outputs
         writer = WRITERS[name]
-        text = writer.write(parts, options)
+        text = write(name, options, cut.parts, cut.tooled)
     except (GeometryError, GcodeError) as error:
         return error
     return Document(body=text.encode(), media_type=writer.media_type)
