@@ -20,6 +20,7 @@ pytestmark = [pytest.mark.integration, pytest.mark.xdist_group("cli-server")]
 
 PATH_DATA = "M 0 0 C 10 0 20 10 30 30 L 40 30 A 5 5 0 0 1 50 30 Z"
 GCODE = ["--feed-rate", "600", "--safe-z", "5", "--cut-z", "-1", "--comments"]
+TABS = ["--tool-diameter", "4", "--tabs", "2", "--tab-width", "3", "--tab-height", "0.5"]
 
 
 @pytest.fixture(scope="module")
@@ -47,6 +48,9 @@ CASES = {
     "svg-drawing.json": ["approx", str(DRAWING_SVG), "-t", "0.001", "--choose-start"],
     "dxf-drawing.dxf": ["approx", str(DRAWING_DXF), "-t", "0.001"],
     "dxf-drawing-preview.svg": ["preview", str(DRAWING_DXF), "-t", "0.01"],
+    "path-offset.json": ["approx", PATH_DATA, "-t", "0.01", "--offset", "1", "--side", "left"],
+    "svg-drawing-machined.ngc": ["approx", str(DRAWING_SVG), "-t", "0.01", *GCODE, *TABS],
+    "svg-drawing-machined-preview.svg": ["preview", str(DRAWING_SVG), "-t", "0.01", *TABS],
 }
 
 

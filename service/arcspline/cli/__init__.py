@@ -7,9 +7,9 @@ app runs in this process (:func:`arcspline.client.local_client`), with ``--serve
 same requests go to a running service, so both give the same bytes.
 
 Modules: ``app`` (the commands), ``options`` (what the options change in a request),
-``inputs`` (INPUT to request), ``work`` (a request to its output, through a client),
-``outputs`` (formats, files), ``summary`` (the tables), ``batch`` (many files), ``errors``
-(one line per failure, exit codes).
+``tooling`` (the offset and machining options), ``inputs`` (INPUT to request), ``work`` (a
+request to its output, through a client), ``outputs`` (formats, files), ``summary`` (the
+tables), ``batch`` (many files), ``errors`` (one line per failure, exit codes).
 """
 
 from __future__ import annotations

@@ -39,6 +39,23 @@ from .options import (
     Tolerance,
     UnitsOption,
 )
+from .tooling import (
+    CompensationOption,
+    CutOption,
+    DirectionOption,
+    JoinOption,
+    LeadRadius,
+    MitreLimit,
+    OffsetOption,
+    Ramp,
+    SideOption,
+    TabHeight,
+    TabsOption,
+    TabWidth,
+    ToolDiameter,
+    Tooling,
+    ToolNumber,
+)
 
 app = typer.Typer(
     name="arcspline",
@@ -109,6 +126,20 @@ def approx(
     join_tolerance: JoinTolerance = None,
     order: Order = None,
     choose_start: ChooseStart = None,
+    offset: OffsetOption = None,
+    side: SideOption = None,
+    join: JoinOption = None,
+    mitre_limit: MitreLimit = None,
+    tool_diameter: ToolDiameter = None,
+    cut: CutOption = None,
+    direction: DirectionOption = None,
+    lead_radius: LeadRadius = None,
+    ramp: Ramp = None,
+    tabs: TabsOption = None,
+    tab_width: TabWidth = None,
+    tab_height: TabHeight = None,
+    compensation: CompensationOption = None,
+    tool_number: ToolNumber = None,
     output: OutputFile = None,
     fmt: FormatOption = None,
     server: Server = None,
@@ -120,13 +151,17 @@ def approx(
 
     Example: arcspline approx part.svg -t 0.01 --feed-rate 600 --safe-z 5 --cut-z -1 -o part.ngc
     """
+    tooling = Tooling.of(
+        offset, side, join, mitre_limit, tool_diameter, cut, direction, lead_radius, ramp,
+        tabs, tab_width, tab_height, compensation, tool_number,
+    )  # fmt: skip
     overrides = Overrides.of(
         tolerance, strategy, units, feed_rate=feed_rate, decimals=decimals,
         arc_format=arc_format, line_numbers=line_numbers, comments=comments, safe_z=safe_z,
         cut_z=cut_z, plunge_feed_rate=plunge_feed_rate, step_down=step_down,
         min_arc_length=min_arc_length, max_radius=max_radius, layers=layers,
         source_units=source_units, join_tolerance=join_tolerance, order=order,
-        choose_start=choose_start,
+        choose_start=choose_start, tooling=tooling,
     )  # fmt: skip
     from .commands import approximate_input, report
 
@@ -165,6 +200,20 @@ def batch(
     join_tolerance: JoinTolerance = None,
     order: Order = None,
     choose_start: ChooseStart = None,
+    offset: OffsetOption = None,
+    side: SideOption = None,
+    join: JoinOption = None,
+    mitre_limit: MitreLimit = None,
+    tool_diameter: ToolDiameter = None,
+    cut: CutOption = None,
+    direction: DirectionOption = None,
+    lead_radius: LeadRadius = None,
+    ramp: Ramp = None,
+    tabs: TabsOption = None,
+    tab_width: TabWidth = None,
+    tab_height: TabHeight = None,
+    compensation: CompensationOption = None,
+    tool_number: ToolNumber = None,
     out_dir: Annotated[
         Path | None,
         typer.Option(
@@ -205,13 +254,17 @@ def batch(
 
     Example: arcspline batch parts/ -t 0.01 --feed-rate 600 --out-dir programs/
     """
+    tooling = Tooling.of(
+        offset, side, join, mitre_limit, tool_diameter, cut, direction, lead_radius, ramp,
+        tabs, tab_width, tab_height, compensation, tool_number,
+    )  # fmt: skip
     overrides = Overrides.of(
         tolerance, strategy, units, feed_rate=feed_rate, decimals=decimals,
         arc_format=arc_format, line_numbers=line_numbers, comments=comments, safe_z=safe_z,
         cut_z=cut_z, plunge_feed_rate=plunge_feed_rate, step_down=step_down,
         min_arc_length=min_arc_length, max_radius=max_radius, layers=layers,
         source_units=source_units, join_tolerance=join_tolerance, order=order,
-        choose_start=choose_start,
+        choose_start=choose_start, tooling=tooling,
     )  # fmt: skip
     from .commands import run_batch
 
@@ -232,6 +285,20 @@ def preview(
     join_tolerance: JoinTolerance = None,
     order: Order = None,
     choose_start: ChooseStart = None,
+    offset: OffsetOption = None,
+    side: SideOption = None,
+    join: JoinOption = None,
+    mitre_limit: MitreLimit = None,
+    tool_diameter: ToolDiameter = None,
+    cut: CutOption = None,
+    direction: DirectionOption = None,
+    lead_radius: LeadRadius = None,
+    ramp: Ramp = None,
+    tabs: TabsOption = None,
+    tab_width: TabWidth = None,
+    tab_height: TabHeight = None,
+    compensation: CompensationOption = None,
+    tool_number: ToolNumber = None,
     output: OutputFile = None,
     server: Server = None,
 ) -> None:
@@ -242,9 +309,13 @@ def preview(
 
     Example: arcspline preview part.dxf -t 0.01 -o preview.svg
     """
+    tooling = Tooling.of(
+        offset, side, join, mitre_limit, tool_diameter, cut, direction, lead_radius, ramp,
+        tabs, tab_width, tab_height, compensation, tool_number,
+    )  # fmt: skip
     overrides = Overrides.of(
         tolerance, strategy, units, layers=layers, source_units=source_units,
-        join_tolerance=join_tolerance, order=order, choose_start=choose_start,
+        join_tolerance=join_tolerance, order=order, choose_start=choose_start, tooling=tooling,
     )  # fmt: skip
     from .commands import preview_input
 

@@ -134,7 +134,9 @@ def option_of(path: str) -> str | None:
     parts = path.split(".")
     if len(parts) == 3 and parts[:2] == ["body", "gcode"]:
         return "--" + parts[2].replace("_", "-")
-    return None
+    from .tooling import option_of as tooling_option
+
+    return tooling_option(path)
 
 
 def _is_transport_error(error: BaseException) -> bool:

@@ -16,6 +16,7 @@ from typing import Annotated, Any, Literal
 import typer
 
 from .errors import UsageError
+from .tooling import Tooling
 
 Kind = Literal["spiral", "path", "drawing"]
 Format = Literal["json", "gcode", "dxf", "svg"]
@@ -187,19 +188,26 @@ class Overrides:
     units: str | None = None
     gcode: dict[str, Any] = field(default_factory=dict)
     drawing: dict[str, Any] = field(default_factory=dict)
+    tooling: Tooling = field(default_factory=Tooling)
 
     @classmethod
     def of(
-        cls, tolerance: float | None, strategy: str | None, units: str | None, **given: Any
+        cls,
+        tolerance: float | None,
+        strategy: str | None,
+        units: str | None,
+        tooling: Tooling | None = None,
+        **given: Any,
     ) -> Overrides:
-        """From the commands' keyword arguments (``None``: not given)."""
+        """From the commands' keyword arguments (``None``: not given); ``tooling``: the
+        offset and machining options (:mod:`~arcspline.cli.tooling`)."""
         unknown = set(given) - set(GCODE_FIELDS) - set(DRAWING_FIELDS)
         assert not unknown, f"not request fields: {unknown}"
         if given.get("layers") is not None:
             given["layers"] = [name for item in given["layers"] for name in item.split(",") if name]
         gcode = {k: v for k, v in given.items() if k in GCODE_FIELDS and v is not None}
         drawing = {k: v for k, v in given.items() if k in DRAWING_FIELDS and v is not None}
-        return cls(tolerance, strategy, units, gcode, drawing)
+        return cls(tolerance, strategy, units, gcode, drawing, tooling or Tooling())
 
     @property
     def asks_for_program(self) -> bool:
@@ -236,4 +244,4 @@ class Overrides:
                 gcode["units"] = self.units
         if gcode:
             body["gcode"] = gcode
-        return body
+        return self.tooling.apply(body, kind)
