@@ -81,6 +81,7 @@ bench: $(STAMP) $(KERNELS)
 	$(BIN)/python bench/fewest.py
 	$(BIN)/python bench/paths.py
 	$(BIN)/python bench/drawings.py
+	$(BIN)/python bench/offsets.py
 	$(BIN)/python bench/service.py
 	$(BIN)/python bench/startup.py
 	$(BIN)/python bench/client.py
