@@ -18,14 +18,13 @@ Files the pipeline refuses are listed with the refusal. Run with
 
 from __future__ import annotations
 
-import os
 import platform
-import sys
 import time
 from collections.abc import Callable, Sequence
 from functools import partial
-from pathlib import Path as FilePath
 from typing import TypeVar
+
+from timing import corpus_dir
 
 from arcspline.drawings import DocumentError, Element
 from arcspline.drawings.approximate import (
@@ -46,13 +45,6 @@ REPEATS = 3
 T = TypeVar("T")
 
 
-def _corpus() -> FilePath:
-    for candidate in (os.environ.get("SHARED_CORPUS"), "../shared/corpus", "/work/shared/corpus"):
-        if candidate and (FilePath(candidate) / "svg").is_dir():
-            return FilePath(candidate)
-    sys.exit("the shared corpus is not here: set SHARED_CORPUS")
-
-
 def _best(f: Callable[[], T]) -> tuple[T, float]:
     best, result = float("inf"), None
     for _ in range(REPEATS):
@@ -71,7 +63,7 @@ def _each_alone(
 
 
 def main() -> None:
-    corpus = _corpus()
+    corpus = corpus_dir()
     print(
         f"# drawings of the corpus ({platform.processor() or platform.machine()}, "
         f"python {platform.python_version()})"

@@ -19,14 +19,13 @@ Times are the best of a few runs (one run when a call takes longer than a second
 
 from __future__ import annotations
 
-import os
 import platform
-import sys
 import time
 from collections.abc import Callable
 from functools import partial
-from pathlib import Path as FilePath
 from typing import TypeVar
+
+from timing import corpus_dir
 
 from arcspline.drawings import DocumentError
 from arcspline.drawings.approximate import CURVE_FRACTION, DrawingOptions, approximate_drawing
@@ -48,13 +47,6 @@ ONCE_S = 1.0
 T = TypeVar("T")
 
 
-def _corpus() -> FilePath:
-    for candidate in (os.environ.get("SHARED_CORPUS"), "../shared/corpus", "/work/shared/corpus"):
-        if candidate and (FilePath(candidate) / "svg").is_dir():
-            return FilePath(candidate)
-    sys.exit("the shared corpus is not here: set SHARED_CORPUS")
-
-
 def _best(f: Callable[[], T]) -> tuple[T, float]:
     best = float("inf")
     for _ in range(REPEATS):
@@ -71,7 +63,7 @@ def _refusal(error: Exception) -> str:
 
 
 def main() -> None:
-    corpus = _corpus()
+    corpus = corpus_dir()
     print(
         f"# offsets (outside {RADIUS_MM:g} mm) and machining (tool {2 * RADIUS_MM:g} mm) of the "
         f"corpus at {TOLERANCE_MM} mm ({platform.processor() or platform.machine()}, "

@@ -11,8 +11,11 @@ another's evicts them: 30 % slower for the core).
 from __future__ import annotations
 
 import math
+import os
+import sys
 import time
 from collections.abc import Callable, Sequence
+from pathlib import Path
 
 #: Seconds of back-to-back calls of one rival before the next one's turn.
 BLOCK_S = 0.05
@@ -36,3 +39,12 @@ def paired_best(runs: Sequence[Callable[[], object]], budget_s: float) -> list[f
                 calls += 1
         rounds += 1
     return best
+
+
+def corpus_dir() -> Path:
+    """The shared corpus: ``$SHARED_CORPUS``, ``../shared/corpus`` or ``/work/shared/corpus``
+    (exits saying so when none is there)."""
+    for candidate in (os.environ.get("SHARED_CORPUS"), "../shared/corpus", "/work/shared/corpus"):
+        if candidate and (Path(candidate) / "svg").is_dir():
+            return Path(candidate)
+    sys.exit("the shared corpus is not here: set SHARED_CORPUS")

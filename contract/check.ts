@@ -100,6 +100,9 @@ const requests: { [K in RequestName]: RequiredOnly<Schemas[K]> } = {
   PathRequest: pathRequest,
   PathBatchRequest: { jobs: [pathRequest, { path: pathSegments, tolerance: 0.01 }] },
   DrawingRequest: drawingRequest,
+  OffsetRequest: { distance: 3, side: "outside" },
+  TabsRequest: { count: 4, width: 5, height: 1.5 },
+  MachiningRequest: { tool_diameter: 6 },
 };
 
 // The optional fields are still accepted where a client sets them.
@@ -115,6 +118,24 @@ const drawingWithOptions: Schemas["DrawingRequest"] = {
   dxf: requests.DxfRequest,
   layers: null,
   units: "inch",
+};
+const offsetDrawing: Schemas["DrawingRequest"] = {
+  ...requests.DrawingRequest,
+  offset: { ...requests.OffsetRequest, join: "mitre", mitre_limit: 2 },
+};
+const machinedPath: Schemas["PathRequest"] = {
+  ...requests.PathRequest,
+  machining: {
+    ...requests.MachiningRequest,
+    cut: "auto",
+    direction: "climb",
+    lead_radius: null,
+    entry: "ramp",
+    tabs: requests.TabsRequest,
+    compensation: "controller",
+    tool_number: 1,
+    join: "round",
+  },
 };
 
 // -- responses: fields read without guards -----------------------------------------------
@@ -179,7 +200,17 @@ const readers: { [K in ResponseName]: (r: Schemas[K]) => unknown } = {
   DrawingResponse: (r) =>
     r.toolpaths.map((t) => t.sources.length).length + r.stats.toolpath_count +
     r.document.elements_in + r.budget.fit + r.join.joins + r.rapids.after +
-    (r.gcode ?? "").length + (r.units === "inch" ? 25.4 : 1),
+    (r.gcode ?? "").length + (r.units === "inch" ? 25.4 : 1) +
+    (r.offset?.paths_out ?? 0) + (r.machining?.rapid_length ?? 0),
+  OffsetNoteResponse: (r) => `${r.toolpath} ${r.kind}: ${r.message}`,
+  OffsetResponse: (r) =>
+    r.distance + r.side.length + r.contours_in + r.paths_out + r.origin.length +
+    r.source_max_deviation + r.notes.length,
+  MachinedContourResponse: (r) => `${r.toolpath} ${r.cut} ${r.direction} ${r.depth}`,
+  MachiningWarningResponse: (r) => `${r.toolpath}: ${r.message}`,
+  MachiningResponse: (r) =>
+    r.tool_diameter + r.contours.length + r.warnings.length + r.rapid_length +
+    r.source_max_deviation,
 };
 
 // -- operations: request bodies and responses by media type --------------------------------

@@ -12,36 +12,16 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 
-from arcspline.geometry import CircularArc, Line, Point
+from arcspline.geometry import CircularArc, Line
+from arcspline.geometry.offset.table import length as length
+from arcspline.geometry.offset.table import point_at as point_at
 
 Element = Line | CircularArc
 Chain = tuple[Element, ...]
 
 
-def length(element: Element) -> float:
-    """Arc length: ``|end − start|`` for a line, ``r·|sweep|`` for an arc."""
-    if isinstance(element, Line):
-        return math.dist(element.start, element.end)
-    return element.radius * abs(element.sweep_rad)
-
-
 def chain_length(chain: Sequence[Element]) -> float:
     return math.fsum(length(e) for e in chain)
-
-
-def point_at(element: Element, t: float) -> Point:
-    """The point at fraction ``t`` of the element (of its sweep, for an arc); the ends are
-    returned as stored."""
-    if t <= 0.0:
-        return Point(*element.start)
-    if t >= 1.0:
-        return Point(*element.end)
-    if isinstance(element, Line):
-        (x0, y0), (x1, y1) = element.start, element.end
-        return Point(x0 + t * (x1 - x0), y0 + t * (y1 - y0))
-    angle = element.start_angle_rad + t * element.sweep_rad
-    cx, cy = element.center
-    return Point(cx + element.radius * math.cos(angle), cy + element.radius * math.sin(angle))
 
 
 def tangent_at(element: Element, t: float) -> tuple[float, float]:
