@@ -647,7 +647,7 @@ async def test_a_raw_documents_machining_program_needs_safe_z_too(
             ["machining", "tabs", "height"],
         ),
         ("machining", {"tool_diameter": 1.0, "tool_number": 100000}, ["machining", "tool_number"]),
-        ("machining", {"tool_diameter": 1.0, "tool_number": -1}, ["machining", "tool_number"]),
+        ("machining", {"tool_diameter": 1.0, "tool_number": 0}, ["machining", "tool_number"]),
         ("machining", {"tool_diameter": 1.0, "spindle": "ccw"}, ["machining", "spindle"]),
     ],
 )

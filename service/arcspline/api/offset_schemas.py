@@ -98,7 +98,7 @@ class MachiningRequest(RequestModel):
     )
     tool_number: int | None = Field(
         default=None,
-        ge=0,
+        ge=1,
         le=MAX_TOOL_NUMBER,
         description="Controller compensation by the tool table's diameter (`D<n>`).",
     )
