@@ -468,19 +468,33 @@ async def test_inside_of_an_open_path_names_its_subpath(client: httpx.AsyncClien
 async def test_inside_of_an_open_contour_in_a_drawing_names_the_toolpath_and_its_element(
     client: httpx.AsyncClient,
 ) -> None:
-    document = PLATE.replace("</svg>", '<polyline id="wire" points="10 10 20 10 20 15"/></svg>')
-    response = await client.post(
+    wire = '<polyline id="wire" points="10 10 20 10 20 15"/></svg>'
+    document = PLATE.replace("</svg>", wire)
+    body = await _ok(
+        client,
         DRAWINGS,
         json={**_plate_json(offset={"distance": 1.0, "side": "inside"}), "document": document},
     )
-    problem = problem_of(response, 422)
-    assert locs(problem) == [["body", "offset", "side"]]
-    found = re.search(r"toolpaths\[(\d+)\] is open \(drawn by ([^)]*)\)", problem["detail"])
-    assert found is not None, problem["detail"]
+    # The wire has no inside: left out, with a note naming it; the plate and hole are offset.
+    ((note,),) = [[n for n in body["offset"]["notes"] if n["kind"] == "open"]]
+    found = re.search(r"toolpaths\[(\d+)\] \(drawn by ([^)]*)\)", note["message"])
+    assert found is not None, note["message"]
     assert found.group(2) == "polyline#wire"
+    assert int(found.group(1)) == note["toolpath"]
+    assert note["toolpath"] not in body["offset"]["origin"]
+    assert body["offset"]["paths_out"] == 2
     # The toolpath named is the wire's in the answer's order (as it would be cut).
     ok = await _ok(client, DRAWINGS, json={**_plate_json(), "document": document})
-    assert ok["toolpaths"][int(found.group(1))]["sources"] == ["polyline#wire"]
+    assert ok["toolpaths"][note["toolpath"]]["sources"] == ["polyline#wire"]
+    # The wire alone: nothing to offset, refused naming it.
+    alone = PLATE.split("<rect")[0] + wire
+    response = await client.post(
+        DRAWINGS,
+        json={**_plate_json(offset={"distance": 1.0, "side": "inside"}), "document": alone},
+    )
+    problem = problem_of(response, 422)
+    assert locs(problem) == [["body", "offset", "side"]]
+    assert "toolpaths[0] is open (drawn by polyline#wire)" in problem["detail"]
 
 
 @pytest.mark.parametrize(
@@ -541,14 +555,22 @@ async def test_a_tool_larger_than_every_feature_is_refused(client: httpx.AsyncCl
 async def test_a_machining_tool_too_large_for_a_hole_names_the_holes_toolpath(
     client: httpx.AsyncClient,
 ) -> None:
+    # The hole (⌀12) is left uncut with a warning naming it; the plate is cut.
     request = _plate_json(machining={"tool_diameter": 14.0, "cut": "inside"})
+    body = await _ok(client, DRAWINGS, json=request)
+    ((warning,),) = [[w for w in body["machining"]["warnings"] if "left uncut" in w["message"]]]
+    assert "(drawn by circle#hole)" in warning["message"]
+    assert "does not fit" in warning["message"]
+    ok = await _ok(client, DRAWINGS, json=_plate_json())
+    assert ok["toolpaths"][warning["toolpath"]]["sources"] == ["circle#hole"]
+    assert [c["toolpath"] for c in body["machining"]["contours"]] == [1 - warning["toolpath"]]
+    # A tool that fits nothing: refused, naming a contour.
+    request = _plate_json(machining={"tool_diameter": 40.0, "cut": "inside"})
     problem = problem_of(await client.post(DRAWINGS, json=request), 422)
     assert problem["type"] == "urn:arcspline:problem:tool-too-large"
-    ((body, toolpaths, index),) = locs(problem)
-    assert (body, toolpaths) == ("body", "toolpaths")
-    assert "(drawn by circle#hole)" in problem["detail"]
-    ok = await _ok(client, DRAWINGS, json=_plate_json())
-    assert ok["toolpaths"][index]["sources"] == ["circle#hole"]
+    ((where, toolpaths, _index),) = locs(problem)
+    assert (where, toolpaths) == ("body", "toolpaths")
+    assert "does not fit" in problem["detail"]
 
 
 async def test_machining_an_open_contour_inside_names_its_toolpath_and_element(

@@ -43,8 +43,12 @@ SOURCE_UNITS = {"CadQuery__cadquery__rational_spline.dxf": "mm"}
 #: (relative) off its circle (segment_table.check), and a few of those add up.
 RTOL = 1e-8
 #: Drawings run through the command line too (all contours closed; small).
-#: A refusal's detail naming a contour that crosses itself, and where.
-CROSSING = re.compile(r"toolpaths[.\[](\d+)\]?: crosses itself at \(([-+\deE.]+), ([-+\deE.]+)\)")
+#: Where a refusal or a note says a contour crosses itself.
+CROSSING = re.compile(r"crosses itself at \(([-+\deE.]+), ([-+\deE.]+)\)")
+#: The reasons a contour is refused a side or left out.
+REASONS = ("crosses itself", "is open", "does not fit")
+#: The offset notes of contours left out.
+LEFT_OUT = ("open", "crossing")
 CLI_FILES = ("domoszlai__juicy-gcode__testtransform.svg", "CadQuery__cadquery__MC_12x31.dxf")
 
 
@@ -125,8 +129,16 @@ def _check_offset(contours: Contours, answer: dict[str, Any]) -> None:
     assert offset["paths_out"] == len(answer["toolpaths"]) == len(offset["origin"])
     paths = [oracle.from_json(t["segments"]) for t in answer["toolpaths"]]
     slack = contours.slack(offset, offset["notes"])
+    left = {n["toolpath"]: n["message"] for n in offset["notes"] if n["kind"] in LEFT_OUT}
+    for k, message in left.items():
+        _assert_left_out_rightly(k, message, contours)
+    # Every contour not left out is closed (an open one has no outside) and is offset.
+    assert all(contours.closed[k] for k in range(len(contours.closed)) if k not in left)
+    sides: list[oracle.Side | None] = [
+        None if k in left else "outside" for k in range(len(contours.segments))
+    ]
     report = oracle.check_each(
-        contours.segments, paths, offset["origin"], RADIUS_MM, reach_tolerance=slack
+        contours.segments, paths, offset["origin"], RADIUS_MM, sides, reach_tolerance=slack
     )
     # An outside offset never vanishes: a contour without a path has its outside unreached.
     _assert_ok(report, slack, contours)
@@ -141,7 +153,12 @@ def _check_machining(contours: Contours, answer: dict[str, Any]) -> None:
     assert plan["tool_diameter"] == 2 * RADIUS_MM
     slack = contours.slack(plan, plan["warnings"])
     assert len(plan["contours"]) == len(answer["toolpaths"])
-    assert sorted({c["toolpath"] for c in plan["contours"]}) == list(range(len(contours.closed)))
+    uncut = {w["toolpath"]: w["message"] for w in plan["warnings"] if "left uncut" in w["message"]}
+    for k, message in uncut.items():
+        _assert_left_out_rightly(k, message, contours)
+    assert sorted({c["toolpath"] for c in plan["contours"]}) == [
+        k for k in range(len(contours.closed)) if k not in uncut
+    ]
     assert 0 <= plan["rapid_length"] < math.inf
     sides: dict[int, oracle.Side] = {}
     for cut in plan["contours"]:
@@ -171,39 +188,39 @@ def _check_machining(contours: Contours, answer: dict[str, Any]) -> None:
 
 
 def _refused_rightly(response: httpx.Response, contours: Contours) -> bool:
-    """A 422 for a good reason, checked independently: an open contour asked for a side, a
-    contour that crosses itself (where it says), or a tool that fits nowhere inside one."""
+    """A 422 for a good reason, checked independently (:func:`_assert_left_out_rightly`)."""
     if response.status_code != 422:
         return False
     detail = response.json()["detail"]
-    if "crosses itself" in detail:
-        assert _crossing_named(detail, contours), detail
-        return True
-    opened = re.search(r"toolpaths\[(\d+)\] is open", detail)
-    if opened is not None:
-        k = int(opened[1])
-        assert not contours.closed[k], detail
-        assert not oracle.is_closed(contours.segments[k]), detail
-        return True
-    too_large = re.search(r"toolpaths[.\[](\d+)\]?: the tool .* does not fit", detail)
-    if too_large is not None:
+    named = re.search(r"toolpaths[.\[](\d+)", detail)
+    if named is None or not any(why in detail for why in REASONS):
+        return False
+    _assert_left_out_rightly(int(named[1]), detail, contours)
+    return True
+
+
+def _assert_left_out_rightly(k: int, message: str, contours: Contours) -> None:
+    """Contour ``k`` refused (or left out) for the reason ``message`` gives, checked
+    independently: open (asked a side), crossing itself where it says, or with no point a
+    tool of the radius reaches from inside."""
+    if "crosses itself" in message:
+        found = CROSSING.search(message)
+        assert found is not None, message
+        assert _crosses_at(k, float(found[1]), float(found[2]), contours), message
+    elif "is open" in message:
+        assert not contours.closed[k], message
+        assert not oracle.is_closed(contours.segments[k]), message
+    else:
+        assert "does not fit" in message, message
         # Only an inside cut can vanish: no point of the contour is reachable from inside.
-        k = int(too_large[1])
-        assert contours.closed[k], detail
+        assert contours.closed[k], message
         inside = oracle.check_offset([contours.segments[k]], [], RADIUS_MM, "inside")
         assert inside.reachable == 0, f"toolpaths[{k}] is reachable: {inside.describe()}"
-        return True
-    return False
 
 
-def _crossing_named(detail: str, contours: Contours) -> bool:
-    """A refusal that says where a contour crosses itself: the point (written to six
-    significant digits) is on the contour it names, on two segments that are not neighbours
-    (nor the first and last of a loop)."""
-    found = CROSSING.search(detail)
-    if found is None:
-        return False
-    k, x, y = int(found[1]), float(found[2]), float(found[3])
+def _crosses_at(k: int, x: float, y: float, contours: Contours) -> bool:
+    """Whether ``(x, y)`` (written to six significant digits) is on contour ``k``, on two
+    segments that are not neighbours (nor the first and last of a loop)."""
     segments = contours.segments[k]
     near = [
         j
@@ -241,7 +258,6 @@ async def test_every_closed_contour_offset_outside_keeps_and_reaches_the_tool_ra
     if _refused_rightly(response, contours):
         return
     assert response.status_code == 200, response.text
-    assert all(contours.closed)
     _check_offset(contours, response.json())
 
 

@@ -128,11 +128,19 @@ def test_a_slot_narrower_than_the_tool_is_left_with_a_warning() -> None:
 
 
 @pytest.mark.parametrize("radius", [2.5, 3.0])  # smaller than the tool, and exactly its size
-def test_a_hole_not_larger_than_the_tool_is_refused(radius: float) -> None:
+def test_a_hole_not_larger_than_the_tool_is_left_uncut_and_named(radius: float) -> None:
     spline = fitted(rectangle(0, 0, 30, 30), circle(15, 15, radius))
+    machined = machine(spline, MachiningOptions(6.0), DEFAULT_LIMITS)
+    assert [p.source for p in machined.contours] == [0]
+    ((source, words),) = machined.warnings
+    assert source == 1
+    assert "does not fit" in words
+    assert "left uncut" in words
+    _check(spline, machined, 3.0, ["outside", None])
+    # Alone, with nothing else to cut, it is refused.
     with pytest.raises(GeometryError) as caught:
-        machine(spline, MachiningOptions(6.0), DEFAULT_LIMITS)
-    assert caught.value.field == "path.subpaths[1]"
+        machine(fitted(circle(15, 15, radius)), MachiningOptions(6.0, cut="inside"))
+    assert caught.value.field == "path.subpaths[0]"
     assert caught.value.kind == "tool_too_large"
 
 

@@ -139,7 +139,7 @@ class OffsetNoteResponse(ResponseModel):
     the tool), ``narrow`` (a part too narrow was dropped), ``collapsed``."""
 
     toolpath: int = Field(description="The contour's index (its toolpath or subpath).")
-    kind: Literal["split", "vanished", "narrow", "collapsed", "loop"]
+    kind: Literal["split", "vanished", "narrow", "collapsed", "loop", "open"]
     message: str = Field(description="Names the contour (and for a drawing its elements).")
 
 

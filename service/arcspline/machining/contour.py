@@ -53,12 +53,19 @@ class Piece(NamedTuple):
 
 
 class Context(NamedTuple):
-    """What every contour's paths are made with; ``warnings`` collects ``(source, words)``."""
+    """What every contour's paths are made with; ``warnings`` collects ``(source, words)``,
+    ``refused`` the refusals of contours left uncut (raised if nothing else is cut)."""
 
     options: MachiningOptions
     obstacles: Obstacles
     snap: float
     warnings: list[tuple[int, str]]
+    refused: list[GeometryError]
+
+    def leave_uncut(self, index: int, refusal: GeometryError) -> None:
+        """Contour ``index`` is not cut, for ``refusal``'s reason: a warning names it."""
+        self.refused.append(refusal)
+        self.warnings.append((index, f"{refusal.message}; left uncut"))
 
 
 def _oriented(loop: Chain, clockwise: bool) -> Chain:
@@ -175,12 +182,13 @@ def _tool_loops(index: int, done: SubpathOffset, context: Context) -> list[Chain
         if note.kind != "vanished":
             context.warnings.append((index, note.message))
     if not done.subpaths:
-        raise GeometryError(
+        context.leave_uncut(index, GeometryError(
             f"path.subpaths[{index}]",
             f"the tool (diameter {options.tool_diameter:g}) does not fit this contour: "
             "its offset vanishes",
             kind="tool_too_large",
-        )
+        ))  # fmt: skip
+        return []
     # The core's offsets are made of lines and arcs only.
     return [cast(Chain, tuple(sub.segments)) for sub in done.subpaths]
 

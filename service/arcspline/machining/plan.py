@@ -65,10 +65,12 @@ def machine(
 ) -> Machined:
     """The tool-centre paths that cut every subpath of ``spline`` with ``options``.
 
-    Raises :class:`GeometryError` naming ``machining.<field>`` for invalid options, and
-    ``path.subpaths[i]`` for a contour that cannot be cut as asked: open with a side, crossing
-    itself with a side (kind ``crossing``), too small for the tool (``tool_too_large``), or,
-    under controller compensation, with a concave arc tighter than the tool radius."""
+    A contour the tool does not fit (its offset vanishes) is left uncut, with a warning
+    naming it; when nothing at all is left to cut, that refusal is raised. Raises
+    :class:`GeometryError` naming ``machining.<field>`` for invalid options, and
+    ``path.subpaths[i]`` for an open contour asked a side, a contour that crosses itself
+    asked a side (kind ``crossing``), or, under controller compensation, a contour with a
+    concave arc tighter than the tool radius."""
     check(options)
     if options.compensation == "controller" and options.resolved_lead_radius == 0.0:
         raise GeometryError(
@@ -85,7 +87,7 @@ def machine(
         default=1.0,
     )
     loops = [(i, note.message) for i, note in cleaned.notes()]
-    context = Context(options, Obstacles(contours), SNAP_RTOL * max(scale, 1.0), loops)
+    context = Context(options, Obstacles(contours), SNAP_RTOL * max(scale, 1.0), loops, [])
     ready = [
         prepared(
             i,
@@ -100,6 +102,8 @@ def machine(
     to_offset = [c for c in ready if c.offset]
     offset_of = dict(zip((c.source for c in to_offset), offsets(to_offset, options), strict=True))
     pieces = contour_paths(ready, offset_of, context)
+    if not pieces and context.refused:
+        raise context.refused[0]
     if options.entry == "ramp":
         # A profile the tool had to plunge into; lines cut "on" have no leads at all.
         plunging = {

@@ -74,6 +74,14 @@ def test_a_figure_eight_has_no_inside() -> None:
     offset_path(spline, OffsetOptions(0.5, "left"), DEFAULT_LIMITS)
 
 
+def test_an_open_contour_beside_closed_ones_is_left_out_with_a_note() -> None:
+    zig = Subpath((Line(Point(0, 0), Point(5, 3)), Line(Point(5, 3), Point(10, 0))))
+    spline = _fitted(zig, Subpath(tuple(shapes.circle((20, 0), 1.0)), True))
+    out = offset_path(spline, OffsetOptions(0.5, "inside"), DEFAULT_LIMITS)
+    assert out.origin == (1,)
+    assert [(i, n.kind) for i, n in out.notes] == [(0, "open")]
+
+
 def test_a_tool_larger_than_everything_is_refused() -> None:
     spline = _fitted(Subpath(tuple(shapes.circle((0, 0), 1.0)), True))
     with pytest.raises(GeometryError) as caught:

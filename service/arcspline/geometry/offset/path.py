@@ -81,34 +81,55 @@ def offset_path(spline: PathSpline, options: OffsetOptions, limits: Limits) -> O
     else its right; open contours take only "left"/"right". The results are fitted again at
     the source's tolerance and strategy, so input lines and arcs come back as themselves.
 
-    Raises :class:`GeometryError` for inside/outside of an open or self-crossing contour,
-    and when every contour vanishes."""
+    An open contour, which has no inside or outside, is left out with a note naming it
+    (kind ``open``) when one is asked for, as is a contour that vanishes. Raises
+    :class:`GeometryError` for a contour that crosses itself when inside/outside is asked
+    (kind ``crossing``: its inside is undefined), and when nothing is left: the first open
+    contour's refusal, or ``tool_too_large`` when every contour vanishes."""
     contours = contours_of(spline)
-    chains = list(zip(contours.chains, contours.closed, strict=True))
-    sides = [
-        _resolve(i, elements, closed, options.side, crossed)
-        for i, (elements, closed, crossed) in enumerate(
-            zip(contours.chains, contours.closed, contours.crossed, strict=True)
-        )
-    ]
+    chains: list[tuple[tuple[Element, ...], bool]] = []
+    sides: list[Side] = []
+    notes: list[tuple[int, OffsetNote]] = contours.notes()
+    refusals: list[GeometryError] = []
+    for i, (elements, closed, crossed) in enumerate(
+        zip(contours.chains, contours.closed, contours.crossed, strict=True)
+    ):
+        try:
+            sides.append(_resolve(i, elements, closed, options.side, crossed))
+        except GeometryError as refusal:
+            if refusal.kind == "crossing":
+                raise
+            refusals.append(refusal)
+            notes.append((i, _left_out(refusal)))
+            sides.append("left")
+            elements = ()
+        chains.append((elements, closed))
     results = offset_chains(chains, options, sides)
     subpaths: list[Subpath] = []
     origin: list[int] = []
-    notes: list[tuple[int, OffsetNote]] = contours.notes()
     for i, result in enumerate(results):
         subpaths += result.subpaths
         origin += [i] * len(result.subpaths)
         notes += [(i, note) for note in result.notes]
     if not subpaths:
+        if refusals:
+            raise refusals[0]
         raise GeometryError(
             "offset.distance",
             f"{options.distance:g}: every contour vanishes: the tool is larger than every feature",
             kind="tool_too_large",
         )
+    notes.sort(key=lambda note: note[0])
     fitted = approximate_path(Path(tuple(subpaths)), spline.tolerance, spline.strategy, limits)
     return OffsetPath(
         fitted, tuple(origin), tuple(notes), spline.stats.max_deviation + contours.moved
     )
+
+
+def _left_out(refusal: GeometryError) -> OffsetNote:
+    """An open contour refused a side, as the note saying it was left out."""
+    del refusal
+    return OffsetNote("open", "is open: it has no inside or outside; left out")
 
 
 def _resolve(
@@ -120,7 +141,8 @@ def _resolve(
         return side
     if not closed:
         raise GeometryError(
-            "offset.side", f"inside/outside needs a closed contour: path.subpaths[{i}] is open"
+            "offset.side",
+            f"inside/outside needs a closed contour: path.subpaths[{i}] is open",
         )
     crossing = crossings(elements, True) if may_cross else ()
     if crossing:

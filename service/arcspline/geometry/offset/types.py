@@ -12,7 +12,7 @@ from ..curves.segments import CircularArc, Line, Subpath
 
 Side = Literal["left", "right", "inside", "outside"]
 Join = Literal["round", "mitre"]
-NoteKind = Literal["split", "vanished", "narrow", "collapsed", "loop"]
+NoteKind = Literal["split", "vanished", "narrow", "collapsed", "loop", "open"]
 #: What an offset chain is made of, in and out: exact lines and circular arcs.
 Element = Line | CircularArc
 
