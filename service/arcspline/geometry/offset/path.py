@@ -75,6 +75,10 @@ def contours_of(spline: PathSpline) -> Contours:
     return Contours(tuple(chains), closed, tuple(crossed), tuple(loops))
 
 
+#: The note of an open contour asked inside/outside, which has neither.
+_LEFT_OUT = OffsetNote("open", "is open: it has no inside or outside; left out")
+
+
 def offset_path(spline: PathSpline, options: OffsetOptions, limits: Limits) -> OffsetPath:
     """Offset every subpath of a fitted path (docs/offsets.md §6): "inside"/"outside" of a
     closed contour is its left when it runs anticlockwise (positive :func:`signed_area`),
@@ -100,7 +104,7 @@ def offset_path(spline: PathSpline, options: OffsetOptions, limits: Limits) -> O
             if refusal.kind == "crossing":
                 raise
             refusals.append(refusal)
-            notes.append((i, _left_out(refusal)))
+            notes.append((i, _LEFT_OUT))
             sides.append("left")
             elements = ()
         chains.append((elements, closed))
@@ -124,12 +128,6 @@ def offset_path(spline: PathSpline, options: OffsetOptions, limits: Limits) -> O
     return OffsetPath(
         fitted, tuple(origin), tuple(notes), spline.stats.max_deviation + contours.moved
     )
-
-
-def _left_out(refusal: GeometryError) -> OffsetNote:
-    """An open contour refused a side, as the note saying it was left out."""
-    del refusal
-    return OffsetNote("open", "is open: it has no inside or outside; left out")
 
 
 def _resolve(
